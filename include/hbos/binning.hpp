@@ -1,0 +1,167 @@
+#pragma once
+/// \file
+/// How a feature is cut into bins: the binning method, the bin-count rule and the per-feature
+/// specification (periodic features, one-sided tails).
+///
+/// Bin-count rules (n samples, range R = max - min):
+///
+/// | rule              | bins k                                            | reference                  |
+/// |-------------------|---------------------------------------------------|----------------------------|
+/// | Fixed             | `Binning::bins`                                   |                            |
+/// | Sqrt              | ceil(sqrt(n))                                     | Goldstein & Dengel 2012 (HBOS) |
+/// | Sturges           | ceil(log2(n) + 1)                                 | Sturges 1926               |
+/// | Scott             | ceil(R / h), h = (24 sqrt(pi) / n)^(1/3) * std    | Scott 1979                 |
+/// | FreedmanDiaconis  | ceil(R / h), h = 2 IQR n^(-1/3)                   | Freedman & Diaconis 1981   |
+/// | BirgeRozenblac    | argmax_b sum_k N_k ln(b N_k / n) - (b - 1 + ln(b)^2.5), b = 1..floor(sqrt(n)) | Birgé & Rozenblac 2006, eq. (2) |
+///
+/// Scott and Freedman–Diaconis fall back to Sturges when their width is zero (constant or
+/// heavily tied data). Birgé–Rozenblac counts its penalty once per candidate b, as published
+/// (PyOD subtracts it b times: that variant lives in pyod.hpp). Its search stops at floor(sqrt(n))
+/// so that, with one sort and a binary search per edge, it costs O(n log n) in total.
+
+#include <Eigen/Core>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "hbos/error.hpp"
+
+namespace hbos {
+
+/// How bin edges are placed.
+enum class BinningMethod {
+  EqualWidth,     ///< k equal bins over [min, max] (static bins; Goldstein & Dengel)
+  FixedWidth,     ///< bins of a given width with edges at origin + j * width (the paper's 0.01)
+  EqualFrequency  ///< about n/k sorted values per bin, a run of equal values never split (dynamic bins)
+};
+
+/// How many bins (EqualWidth, EqualFrequency; ignored by FixedWidth).
+enum class BinCountRule { Fixed, Sqrt, Sturges, Scott, FreedmanDiaconis, BirgeRozenblac };
+
+/// Which side of a feature's distribution is anomalous.
+///
+/// `Upper` is the rule for residual magnitudes: a value at or below the modal bin contributes 0,
+/// and above it the contribution never decreases with the value (a running maximum of the
+/// two-sided contribution), so a match that fits *better* than typical is never penalised and a
+/// secondary mode far out in the tail (a walking person) is not excused by its own density.
+enum class Tail {
+  Both,   ///< classic HBOS: any sparse bin is anomalous
+  Upper,  ///< only large values are anomalous; score non-decreasing in the value
+  Lower   ///< only small values are anomalous; score non-increasing in the value
+};
+
+/// Binning of one feature.
+struct Binning {
+  BinningMethod method = BinningMethod::EqualWidth;  ///< edge placement
+  BinCountRule rule = BinCountRule::Fixed;           ///< bin count (EqualWidth, EqualFrequency)
+  Eigen::Index bins = 10;        ///< bin count for rule Fixed, >= 1
+  double width = 0.01;           ///< [feature units] bin width for FixedWidth, > 0
+  double origin = 0.0;           ///< [feature units] FixedWidth edges lie at origin + j * width
+  Eigen::Index max_bins = 65536; ///< upper bound on any bin count (guards memory), >= 1
+};
+
+/// Everything the model needs to know about one feature.
+struct FeatureSpec {
+  Binning binning{};           ///< how to bin this feature
+  Tail tail = Tail::Both;      ///< which side is anomalous (non-periodic features only)
+  bool periodic = false;       ///< an angle-like feature: values wrap modulo `period`
+  double period_start = -3.14159265358979323846;  ///< [feature units] start of the period
+  double period = 2.0 * 3.14159265358979323846;   ///< [feature units] length of the period, > 0
+};
+
+/// A periodic feature spec for angles in radians, [-pi, pi), with k equal bins on the circle.
+[[nodiscard]] inline FeatureSpec angle_feature(Eigen::Index bins = 16) {
+  FeatureSpec spec;
+  spec.periodic = true;
+  spec.binning.method = BinningMethod::EqualWidth;
+  spec.binning.rule = BinCountRule::Fixed;
+  spec.binning.bins = bins;
+  return spec;
+}
+
+namespace detail {
+
+inline void validate(const FeatureSpec& spec, Eigen::Index feature) {
+  const Binning& b = spec.binning;
+  require(b.max_bins >= 1, "feature ", feature, ": max_bins must be >= 1, got ", b.max_bins);
+  if (b.method == BinningMethod::FixedWidth) {
+    require(std::isfinite(b.width) && b.width > 0.0, "feature ", feature,
+            ": FixedWidth bin width must be finite and > 0, got ", b.width);
+    require(std::isfinite(b.origin), "feature ", feature, ": FixedWidth origin must be finite, got ",
+            b.origin);
+  } else if (b.rule == BinCountRule::Fixed) {
+    require(b.bins >= 1, "feature ", feature, ": bin count must be >= 1, got ", b.bins);
+    require(b.bins <= b.max_bins, "feature ", feature, ": bin count ", b.bins,
+            " exceeds max_bins ", b.max_bins);
+  }
+  if (spec.periodic) {
+    require(std::isfinite(spec.period) && spec.period > 0.0, "feature ", feature,
+            ": period must be finite and > 0, got ", spec.period);
+    require(std::isfinite(spec.period_start), "feature ", feature,
+            ": period_start must be finite, got ", spec.period_start);
+    require(spec.tail == Tail::Both, "feature ", feature,
+            ": a periodic feature has no upper or lower tail; use Tail::Both");
+    require(b.method != BinningMethod::EqualFrequency, "feature ", feature,
+            ": EqualFrequency binning is not defined on a circle; use EqualWidth or FixedWidth");
+  }
+}
+
+[[nodiscard]] inline Eigen::Index clamp_bins(double k, Eigen::Index max_bins) {
+  if (!(k >= 1.0)) return 1;  // also catches NaN
+  if (k >= static_cast<double>(max_bins)) return max_bins;
+  return static_cast<Eigen::Index>(k);
+}
+
+[[nodiscard]] inline Eigen::Index sturges_bins(Eigen::Index n) {
+  return static_cast<Eigen::Index>(std::ceil(std::log2(static_cast<double>(n)) + 1.0));
+}
+
+/// Bins covering `range` at width `h`, or Sturges when the width degenerates to zero.
+[[nodiscard]] inline Eigen::Index bins_from_width(double range, double h, Eigen::Index n,
+                                                  Eigen::Index max_bins) {
+  if (!(h > 0.0) || !(range > 0.0)) return clamp_bins(static_cast<double>(sturges_bins(n)), max_bins);
+  return clamp_bins(std::ceil(range / h), max_bins);
+}
+
+/// Birgé–Rozenblac's penalised log-likelihood maximiser over b = 1..floor(sqrt(n)), on values
+/// sorted ascending. Counts of each candidate histogram come from binary searches of its edges in
+/// the sorted values, O(b log n) per candidate, O(n log n) overall.
+template <class Scalar>
+[[nodiscard]] Eigen::Index birge_rozenblac_bins(const Scalar* sorted, Eigen::Index n,
+                                                Eigen::Index max_bins) {
+  const Scalar lo = sorted[0];
+  const Scalar hi = sorted[n - 1];
+  if (!(hi > lo)) return 1;
+  const auto b_max = std::min<Eigen::Index>(
+      max_bins, std::max<Eigen::Index>(1, static_cast<Eigen::Index>(std::sqrt(static_cast<double>(n)))));
+  const double dn = static_cast<double>(n);
+  Eigen::Index best_b = 1;
+  double best_l = -std::numeric_limits<double>::infinity();
+  for (Eigen::Index b = 1; b <= b_max; ++b) {
+    const double db = static_cast<double>(b);
+    const double step = static_cast<double>(hi - lo) / db;
+    double likelihood = 0.0;
+    const Scalar* begin = sorted;
+    for (Eigen::Index k = 0; k < b; ++k) {
+      // Bin k holds [e_k, e_{k+1}); the last bin is closed and takes everything left.
+      const Scalar* end = sorted + n;
+      if (k + 1 < b) {
+        const auto edge = static_cast<Scalar>(static_cast<double>(lo) + static_cast<double>(k + 1) * step);
+        end = std::lower_bound(begin, sorted + n, edge);
+      }
+      const auto count = static_cast<double>(end - begin);
+      if (count > 0.0) likelihood += count * std::log(db * count / dn);
+      begin = end;
+    }
+    const double penalty = db - 1.0 + std::pow(std::log(db), 2.5);
+    const double l = likelihood - penalty;
+    if (l > best_l) {  // strict: the smallest b wins ties
+      best_l = l;
+      best_b = b;
+    }
+  }
+  return best_b;
+}
+
+}  // namespace detail
+}  // namespace hbos

@@ -1,0 +1,198 @@
+#pragma once
+/// \file
+/// The fitted HBOS model: one histogram per feature and the score they add up to.
+///
+///     score(x) = sum_j c_j(x_j),   c_j(v) = log(h_max_j / h_j(bin of v))
+///
+/// (Goldstein & Dengel 2012, eq. 1, with natural logs and heights normalised per feature; the
+/// rules for empty bins, values out of range, constant features, one-sided tails and periodic
+/// features are in histogram.hpp). Higher = more anomalous; a sample in every feature's modal bin
+/// scores 0. Rows are samples, columns are features.
+///
+/// Inputs: any Eigen dense expression (matrices, maps, blocks; column-major data is read in place,
+/// without copies), or a raw row-major buffer through the `*_row_major` overloads.
+///
+/// Threading: `Hbos` is immutable after `fit`; any number of threads may call its const members
+/// concurrently.
+
+#include <Eigen/Core>
+#include <cmath>
+#include <vector>
+
+#include "hbos/binning.hpp"
+#include "hbos/error.hpp"
+#include "hbos/histogram.hpp"
+
+namespace hbos {
+
+/// Parameters of a model: how each feature is binned and how bins are scored.
+struct HbosParams {
+  /// The spec of every feature that `features` does not override. The default (10 equal-width
+  /// bins, two-sided) is the classic static HBOS.
+  FeatureSpec feature{};
+  /// Optional per-feature specs; when non-empty its size must equal the feature count.
+  std::vector<FeatureSpec> features{};
+  /// Empty-bin and out-of-range rules shared by all features.
+  ScoringOptions scoring{};
+
+  /// The spec that applies to feature j.
+  [[nodiscard]] const FeatureSpec& spec(Eigen::Index j) const {
+    return features.empty() ? feature : features[static_cast<std::size_t>(j)];
+  }
+};
+
+namespace detail {
+
+/// Throws naming the first non-finite entry; the vectorised allFinite() keeps the common case fast.
+template <class Derived>
+void require_finite(const Eigen::DenseBase<Derived>& x, const char* what) {
+  if (x.derived().allFinite()) return;
+  for (Eigen::Index j = 0; j < x.cols(); ++j)
+    for (Eigen::Index i = 0; i < x.rows(); ++i)
+      require(std::isfinite(x.derived().coeff(i, j)), what, "(", i, ", ", j, ") is not finite (",
+              x.derived().coeff(i, j), ")");
+}
+
+inline void validate(const HbosParams& params, Eigen::Index n_features) {
+  require(params.features.empty() || static_cast<Eigen::Index>(params.features.size()) == n_features,
+          "params.features has ", params.features.size(), " specs but the data has ", n_features,
+          " features");
+  validate(params.scoring);
+  for (Eigen::Index j = 0; j < n_features; ++j) validate(params.spec(j), j);
+}
+
+/// Fits `histograms` (resized to the column count) to `x`, reusing their storage.
+template <class Scalar, class Derived>
+void fit_histograms(std::vector<Histogram<Scalar>>& histograms, const Eigen::DenseBase<Derived>& x,
+                    const HbosParams& params, std::vector<Scalar>& scratch) {
+  require(x.rows() > 0, "cannot fit to an empty data set (0 rows)");
+  require(x.cols() > 0, "cannot fit to data with no features (0 columns)");
+  validate(params, x.cols());
+  require_finite(x, "X");
+  histograms.resize(static_cast<std::size_t>(x.cols()));
+  for (Eigen::Index j = 0; j < x.cols(); ++j)
+    histograms[static_cast<std::size_t>(j)].refit(x.derived().col(j), params.spec(j), params.scoring,
+                                                  scratch, j);
+}
+
+/// Writes each row's contribution of feature j into column j of `out` (n x d).
+template <class Scalar, class Derived, class Out>
+void write_contributions(const std::vector<Histogram<Scalar>>& histograms,
+                         const Eigen::DenseBase<Derived>& x, Eigen::DenseBase<Out>& out) {
+  for (Eigen::Index j = 0; j < x.cols(); ++j) {
+    const Histogram<Scalar>& h = histograms[static_cast<std::size_t>(j)];
+    const auto column = x.derived().col(j);
+    for (Eigen::Index i = 0; i < x.rows(); ++i) out.derived().coeffRef(i, j) = h.contribution(column.coeff(i));
+  }
+}
+
+/// Writes each row's score (the sum over features) into `out` (n).
+template <class Scalar, class Derived, class Out>
+void write_scores(const std::vector<Histogram<Scalar>>& histograms, const Eigen::DenseBase<Derived>& x,
+                  Eigen::DenseBase<Out>& out) {
+  out.derived().setZero();
+  for (Eigen::Index j = 0; j < x.cols(); ++j) {
+    const Histogram<Scalar>& h = histograms[static_cast<std::size_t>(j)];
+    const auto column = x.derived().col(j);
+    for (Eigen::Index i = 0; i < x.rows(); ++i) out.derived().coeffRef(i) += h.contribution(column.coeff(i));
+  }
+}
+
+}  // namespace detail
+
+/// A fitted HBOS model. Create it with `Hbos<Scalar>::fit`; it cannot be modified afterwards.
+template <class Scalar>
+class Hbos {
+  static_assert(std::is_floating_point_v<Scalar>, "Hbos needs float or double");
+
+ public:
+  using Index = Eigen::Index;
+  using Vector = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
+  using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
+  using RowMajorMap = Eigen::Map<const Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>;
+
+  /// Fits one histogram per column of `x` (rows = samples).
+  /// \throws InvalidArgument on empty input, non-finite values or invalid parameters.
+  template <class Derived>
+  [[nodiscard]] static Hbos fit(const Eigen::DenseBase<Derived>& x, const HbosParams& params = {}) {
+    static_assert(std::is_same_v<typename Derived::Scalar, Scalar>,
+                  "the data's scalar type must match the model's (Hbos<float> or Hbos<double>)");
+    Hbos model;
+    std::vector<Scalar> scratch;
+    detail::fit_histograms(model.histograms_, x, params, scratch);
+    model.params_ = params;
+    model.n_samples_ = x.rows();
+    return model;
+  }
+
+  /// Fits to a raw row-major buffer of `rows` x `cols` values (read in place).
+  [[nodiscard]] static Hbos fit_row_major(const Scalar* data, Index rows, Index cols,
+                                          const HbosParams& params = {}) {
+    detail::require(data != nullptr || rows * cols == 0, "row-major buffer is null");
+    return fit(RowMajorMap(data, rows, cols), params);
+  }
+
+  /// Scores every row of `x` (n x d, d = n_features()).
+  template <class Derived>
+  [[nodiscard]] Vector score(const Eigen::DenseBase<Derived>& x) const {
+    check_input(x);
+    Vector out(x.rows());
+    detail::write_scores(histograms_, x, out);
+    return out;
+  }
+
+  /// Scores a raw row-major buffer.
+  [[nodiscard]] Vector score_row_major(const Scalar* data, Index rows, Index cols) const {
+    detail::require(data != nullptr || rows * cols == 0, "row-major buffer is null");
+    return score(RowMajorMap(data, rows, cols));
+  }
+
+  /// Scores into a caller-provided vector of x.rows() entries (no allocation).
+  template <class Derived, class Out>
+  void score_into(const Eigen::DenseBase<Derived>& x, Eigen::DenseBase<Out>& out) const {
+    check_input(x);
+    detail::require(out.size() == x.rows(), "score output has ", out.size(), " entries for ",
+                    x.rows(), " rows");
+    detail::write_scores(histograms_, x, out);
+  }
+
+  /// Per-feature contributions, n x d; each row sums to that row's score.
+  template <class Derived>
+  [[nodiscard]] Matrix contributions(const Eigen::DenseBase<Derived>& x) const {
+    check_input(x);
+    Matrix out(x.rows(), x.cols());
+    detail::write_contributions(histograms_, x, out);
+    return out;
+  }
+
+  [[nodiscard]] Index n_features() const { return static_cast<Index>(histograms_.size()); }
+  /// Number of training samples.
+  [[nodiscard]] Index n_samples() const { return n_samples_; }
+  [[nodiscard]] const Histogram<Scalar>& histogram(Index j) const {
+    detail::require(j >= 0 && j < n_features(), "feature index ", j, " out of range [0, ",
+                    n_features(), ")");
+    return histograms_[static_cast<std::size_t>(j)];
+  }
+  [[nodiscard]] const HbosParams& params() const { return params_; }
+
+ private:
+  Hbos() = default;
+
+  template <class Derived>
+  void check_input(const Eigen::DenseBase<Derived>& x) const {
+    static_assert(std::is_same_v<typename Derived::Scalar, Scalar>,
+                  "the data's scalar type must match the model's (Hbos<float> or Hbos<double>)");
+    detail::require(x.cols() == n_features(), "the model was fitted on ", n_features(),
+                    " features but the data to score has ", x.cols(), " columns");
+    detail::require_finite(x, "X");
+  }
+
+  std::vector<Histogram<Scalar>> histograms_;
+  HbosParams params_;
+  Index n_samples_ = 0;
+};
+
+using Hbosd = Hbos<double>;
+using Hbosf = Hbos<float>;
+
+}  // namespace hbos
