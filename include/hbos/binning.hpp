@@ -57,7 +57,12 @@ struct Binning {
   Eigen::Index bins = 10;        ///< bin count for rule Fixed, >= 1
   double width = 0.01;           ///< [feature units] bin width for FixedWidth, > 0
   double origin = 0.0;           ///< [feature units] FixedWidth edges lie at origin + j * width
-  Eigen::Index max_bins = 65536; ///< upper bound on any bin count (guards memory), >= 1
+  /// Averaged shifted histograms (Scott 1985): the average of `shifts` histograms whose origins
+  /// are offset by 1/shifts of a bin, computed on a grid `shifts` times finer with triangular
+  /// weights. It removes the arbitrariness of the bin origin; 1 = the plain histogram.
+  /// EqualWidth and FixedWidth only (EqualFrequency ignores it).
+  Eigen::Index shifts = 1;
+  Eigen::Index max_bins = 65536; ///< upper bound on any bin count (fine bins with shifts), >= 1
 };
 
 /// Everything the model needs to know about one feature.
@@ -84,6 +89,7 @@ namespace detail {
 inline void validate(const FeatureSpec& spec, Eigen::Index feature) {
   const Binning& b = spec.binning;
   require(b.max_bins >= 1, "feature ", feature, ": max_bins must be >= 1, got ", b.max_bins);
+  require(b.shifts >= 1, "feature ", feature, ": shifts must be >= 1, got ", b.shifts);
   if (b.method == BinningMethod::FixedWidth) {
     require(std::isfinite(b.width) && b.width > 0.0, "feature ", feature,
             ": FixedWidth bin width must be finite and > 0, got ", b.width);

@@ -151,6 +151,7 @@ class Histogram {
   Scalar below_ = 0, above_ = 0;          // contributions beyond the tolerance band
   Scalar cap_ = 0;
   Index mode_ = 0;
+  Index shifts_ = 1;                      // averaged shifted histograms: fine bins per coarse bin
   Tail tail_ = Tail::Both;
   bool periodic_ = false;
   bool uniform_ = true;
@@ -228,7 +229,7 @@ void Histogram<Scalar>::place_uniform_edges(const Column& column, const FeatureS
     const Scalar hi = column.maxCoeff();
     const double first = std::floor((static_cast<double>(lo) - binning.origin) / binning.width);
     const double last = std::floor((static_cast<double>(hi) - binning.origin) / binning.width) + 1.0;
-    detail::require(last - first <= static_cast<double>(binning.max_bins), "feature ", feature,
+    detail::require(last - first <= static_cast<double>(binning.max_bins / shifts_), "feature ", feature,
                     ": fixed bin width ", binning.width, " over the range [", lo, ", ", hi,
                     "] needs ", last - first, " bins, more than max_bins = ", binning.max_bins);
     k = static_cast<Index>(last - first);
@@ -242,6 +243,13 @@ void Histogram<Scalar>::place_uniform_edges(const Column& column, const FeatureS
       k = rule_bins(column, binning, lo_, hi_, scratch);
       width = (hi_ - lo_) / static_cast<Scalar>(k);
     }
+  }
+  // Averaged shifted histograms count on a grid m times finer than the coarse bins.
+  if (width > Scalar(0) && shifts_ > 1) {
+    detail::require(k * shifts_ <= binning.max_bins, "feature ", feature, ": ", k, " bins x ",
+                    shifts_, " shifts exceed max_bins = ", binning.max_bins);
+    k *= shifts_;
+    width /= static_cast<Scalar>(shifts_);
   }
   inv_width_ = width > Scalar(0) ? Scalar(1) / width : Scalar(0);
   edges_.resize(static_cast<std::size_t>(k + 1));
@@ -291,24 +299,49 @@ void Histogram<Scalar>::count_and_score(const Column& values, const ScoringOptio
     cap_ = static_cast<Scalar>(std::log(static_cast<double>(n) / options.empty_bin_count));
     mode_ = 0;
   } else {
-    // Heights h_k = count_k / width_k, computed in double; only ratios to h_max are used.
+    // Smoothed mass around each bin (averaged shifted histograms, Scott 1985): with m shifts the
+    // fine bins are 1/m of a coarse bin and m_i = sum_{|d|<m} (1 - |d|/m) count_{i+d}, i.e. the
+    // average of the m coarse histograms whose origins are shifted by one fine bin each. m = 1 is
+    // the plain histogram. Periodic features wrap around. Stored in contribution_ for now.
+    const auto m = static_cast<std::ptrdiff_t>(shifts_);
+    const auto kk = static_cast<std::ptrdiff_t>(k);
+    for (std::ptrdiff_t i = 0; i < kk; ++i) {
+      double mass = static_cast<double>(counts_[static_cast<std::size_t>(i)]);
+      for (std::ptrdiff_t d = 1; d < m; ++d) {
+        const double weight = 1.0 - static_cast<double>(d) / static_cast<double>(m);
+        std::ptrdiff_t left = i - d, right = i + d;
+        if (periodic_) {
+          left = (left % kk + kk) % kk;
+          right = right % kk;
+        }
+        if (left >= 0) mass += weight * static_cast<double>(counts_[static_cast<std::size_t>(left)]);
+        if (right < kk) mass += weight * static_cast<double>(counts_[static_cast<std::size_t>(right)]);
+      }
+      contribution_[static_cast<std::size_t>(i)] = static_cast<Scalar>(mass);
+    }
+    // Heights h_i = mass_i / width_i, in double; only ratios to h_max matter. An empty
+    // neighbourhood counts as `empty_bin_count` samples.
+    auto height = [&](std::size_t i, bool regularise) {
+      const double w = static_cast<double>(edges_[i + 1]) - static_cast<double>(edges_[i]);
+      const double mass = static_cast<double>(contribution_[i]);
+      return (regularise && !(mass > 0.0) ? options.empty_bin_count : mass) / w;
+    };
     double h_max = 0.0;
     double w_max = 0.0;
-    for (std::size_t b = 0; b < k; ++b) {
-      const double w = static_cast<double>(edges_[b + 1]) - static_cast<double>(edges_[b]);
-      const double h = static_cast<double>(counts_[b]) / w;
+    for (std::size_t i = 0; i < k; ++i) {
+      const double h = height(i, false);
       if (h > h_max) {
         h_max = h;
-        mode_ = static_cast<Index>(b);
+        mode_ = static_cast<Index>(i);
       }
-      w_max = std::max(w_max, w);
+      w_max = std::max(w_max, static_cast<double>(edges_[i + 1]) - static_cast<double>(edges_[i]));
     }
-    for (std::size_t b = 0; b < k; ++b) {
-      const double w = static_cast<double>(edges_[b + 1]) - static_cast<double>(edges_[b]);
-      const double count = counts_[b] > 0 ? static_cast<double>(counts_[b]) : options.empty_bin_count;
-      contribution_[b] = static_cast<Scalar>(std::max(0.0, std::log(h_max * w / count)));
-    }
+    for (std::size_t i = 0; i < k; ++i)
+      contribution_[i] = static_cast<Scalar>(std::max(0.0, std::log(h_max / height(i, true))));
+    // The cap is at least every bin's contribution (with shifts, a bin's smoothed mass can be
+    // below empty_bin_count).
     cap_ = static_cast<Scalar>(std::log(h_max * w_max / options.empty_bin_count));
+    for (std::size_t i = 0; i < k; ++i) cap_ = std::max(cap_, contribution_[i]);
   }
 
   // One-sided tails: zero on the good side of the mode, a running maximum on the anomalous side.
@@ -323,7 +356,8 @@ void Histogram<Scalar>::count_and_score(const Column& values, const ScoringOptio
   below_ = tail_ == Tail::Upper ? Scalar(0) : cap_;
   above_ = tail_ == Tail::Lower ? Scalar(0) : cap_;
 
-  const auto tol = static_cast<Scalar>(options.range_tolerance);
+  // The tolerance counts coarse bins (m fine bins each).
+  const auto tol = static_cast<Scalar>(options.range_tolerance * static_cast<double>(shifts_));
   tolerance_lo_ = lo_ - tol * (edges_[1] - edges_[0]);
   tolerance_hi_ = hi_ + tol * (edges_[k] - edges_[k - 1]);
 }
@@ -338,6 +372,7 @@ void Histogram<Scalar>::refit(const Column& column, const FeatureSpec& spec,
   periodic_ = spec.periodic;
   tail_ = spec.tail;
   period_ = 0;
+  shifts_ = spec.binning.method == BinningMethod::EqualFrequency ? 1 : spec.binning.shifts;
 
   const BinCountRule rule = spec.binning.rule;
   const bool equal_frequency = spec.binning.method == BinningMethod::EqualFrequency;

@@ -25,11 +25,25 @@
 
 namespace hbos {
 
+/// The default feature spec: 5 equal-width bins averaged over 5 shifted origins (ASH), two-sided.
+///
+/// Chosen by measurement (docs/accuracy.md): on the 17 ODDS sets (fit on all rows, no scaling)
+/// its mean ROC-AUC is 0.7923, against 0.7798 for the classic 10 plain bins and 0.7896 for PyOD's
+/// scale-dependent default; every (bins, shifts) in [4, 8] x [2, 8] lands within 0.79 +- 0.005,
+/// so the choice is not a knife-edge. Scale- and shift-invariant like every equal-width spec.
+[[nodiscard]] inline FeatureSpec default_feature() {
+  FeatureSpec spec;
+  spec.binning.method = BinningMethod::EqualWidth;
+  spec.binning.rule = BinCountRule::Fixed;
+  spec.binning.bins = 5;
+  spec.binning.shifts = 5;
+  return spec;
+}
+
 /// Parameters of a model: how each feature is binned and how bins are scored.
 struct HbosParams {
-  /// The spec of every feature that `features` does not override. The default (10 equal-width
-  /// bins, two-sided) is the classic static HBOS.
-  FeatureSpec feature{};
+  /// The spec of every feature that `features` does not override (default_feature()).
+  FeatureSpec feature = default_feature();
   /// Optional per-feature specs; when non-empty its size must equal the feature count.
   std::vector<FeatureSpec> features{};
   /// Empty-bin and out-of-range rules shared by all features.

@@ -63,6 +63,17 @@ struct Thresholded {
 
 namespace detail {
 
+/// `a * b` rounded to T before the caller uses it. Bit-parity with numpy needs a product and a
+/// following addition to round twice; GCC (GNU mode, -ffp-contract=fast) and Clang (-ffp-contract=on)
+/// may fuse them into one FMA when the target has FMA (-march=native, -mfma), and GCC ignores
+/// `#pragma STDC FP_CONTRACT`. Storing the product through a volatile forces the rounding on
+/// every compiler; it costs one store/load, so it is used only where parity depends on it.
+template <class T>
+[[nodiscard]] inline T mul_rounded(T a, T b) {
+  volatile T product = a * b;
+  return product;
+}
+
 inline void validate(const AdaptiveRange& r) {
   require(r.range_alpha > 0.0 && r.range_alpha < 1.0,
           "range_alpha must lie in the open interval (0, 1), got ", r.range_alpha);
@@ -101,8 +112,8 @@ Scalar numpy_percentile_linear(Scalar* first, Scalar* last, double q) {
   const Scalar hi = *std::min_element(first + static_cast<std::ptrdiff_t>(i) + 1, last);
   const double g = v - static_cast<double>(i);
   const double diff = static_cast<double>(hi) - static_cast<double>(lo);
-  const double value = g >= 0.5 ? static_cast<double>(hi) - diff * (1.0 - g)
-                                : static_cast<double>(lo) + diff * g;
+  const double value = g >= 0.5 ? static_cast<double>(hi) - mul_rounded(diff, 1.0 - g)
+                                : static_cast<double>(lo) + mul_rounded(diff, g);
   return static_cast<Scalar>(value);
 }
 
