@@ -5,14 +5,15 @@
 ///
 /// Bin-count rules (n samples, range R = max - min):
 ///
-/// | rule              | bins k                                            | reference                  |
+/// | rule              | bins k                                            | reference |
 /// |-------------------|---------------------------------------------------|----------------------------|
-/// | Fixed             | `Binning::bins`                                   |                            |
-/// | Sqrt              | ceil(sqrt(n))                                     | Goldstein & Dengel 2012 (HBOS) |
-/// | Sturges           | ceil(log2(n) + 1)                                 | Sturges 1926               |
-/// | Scott             | ceil(R / h), h = (24 sqrt(pi) / n)^(1/3) * std    | Scott 1979                 |
-/// | FreedmanDiaconis  | ceil(R / h), h = 2 IQR n^(-1/3)                   | Freedman & Diaconis 1981   |
-/// | BirgeRozenblac    | argmax_b sum_k N_k ln(b N_k / n) - (b - 1 + ln(b)^2.5), b = 1..floor(sqrt(n)) | Birgé & Rozenblac 2006, eq. (2) |
+/// | Fixed             | `Binning::bins`                                   | | | Sqrt |
+/// ceil(sqrt(n))                                     | Goldstein & Dengel 2012 (HBOS) | | Sturges
+/// | ceil(log2(n) + 1)                                 | Sturges 1926               | | Scott |
+/// ceil(R / h), h = (24 sqrt(pi) / n)^(1/3) * std    | Scott 1979                 | |
+/// FreedmanDiaconis  | ceil(R / h), h = 2 IQR n^(-1/3)                   | Freedman & Diaconis 1981
+/// | | BirgeRozenblac    | argmax_b sum_k N_k ln(b N_k / n) - (b - 1 + ln(b)^2.5), b
+/// = 1..floor(sqrt(n)) | Birgé & Rozenblac 2006, eq. (2) |
 ///
 /// Scott and Freedman–Diaconis fall back to Sturges when their width is zero (constant or
 /// heavily tied data). Birgé–Rozenblac counts its penalty once per candidate b, as published
@@ -32,7 +33,8 @@ namespace hbos {
 enum class BinningMethod {
   EqualWidth,     ///< k equal bins over [min, max] (static bins; Goldstein & Dengel)
   FixedWidth,     ///< bins of a given width with edges at origin + j * width (the paper's 0.01)
-  EqualFrequency  ///< about n/k sorted values per bin, a run of equal values never split (dynamic bins)
+  EqualFrequency  ///< about n/k sorted values per bin, a run of equal values never split (dynamic
+                  ///< bins)
 };
 
 /// How many bins (EqualWidth, EqualFrequency; ignored by FixedWidth).
@@ -54,22 +56,22 @@ enum class Tail {
 struct Binning {
   BinningMethod method = BinningMethod::EqualWidth;  ///< edge placement
   BinCountRule rule = BinCountRule::Fixed;           ///< bin count (EqualWidth, EqualFrequency)
-  Eigen::Index bins = 10;        ///< bin count for rule Fixed, >= 1
-  double width = 0.01;           ///< [feature units] bin width for FixedWidth, > 0
-  double origin = 0.0;           ///< [feature units] FixedWidth edges lie at origin + j * width
+  Eigen::Index bins = 10;                            ///< bin count for rule Fixed, >= 1
+  double width = 0.01;  ///< [feature units] bin width for FixedWidth, > 0
+  double origin = 0.0;  ///< [feature units] FixedWidth edges lie at origin + j * width
   /// Averaged shifted histograms (Scott 1985): the average of `shifts` histograms whose origins
   /// are offset by 1/shifts of a bin, computed on a grid `shifts` times finer with triangular
   /// weights. It removes the arbitrariness of the bin origin; 1 = the plain histogram.
   /// EqualWidth and FixedWidth only (EqualFrequency ignores it).
   Eigen::Index shifts = 1;
-  Eigen::Index max_bins = 65536; ///< upper bound on any bin count (fine bins with shifts), >= 1
+  Eigen::Index max_bins = 65536;  ///< upper bound on any bin count (fine bins with shifts), >= 1
 };
 
 /// Everything the model needs to know about one feature.
 struct FeatureSpec {
-  Binning binning{};           ///< how to bin this feature
-  Tail tail = Tail::Both;      ///< which side is anomalous (non-periodic features only)
-  bool periodic = false;       ///< an angle-like feature: values wrap modulo `period`
+  Binning binning{};       ///< how to bin this feature
+  Tail tail = Tail::Both;  ///< which side is anomalous (non-periodic features only)
+  bool periodic = false;   ///< an angle-like feature: values wrap modulo `period`
   double period_start = -3.14159265358979323846;  ///< [feature units] start of the period
   double period = 2.0 * 3.14159265358979323846;   ///< [feature units] length of the period, > 0
 };
@@ -93,12 +95,12 @@ inline void validate(const FeatureSpec& spec, Eigen::Index feature) {
   if (b.method == BinningMethod::FixedWidth) {
     require(std::isfinite(b.width) && b.width > 0.0, "feature ", feature,
             ": FixedWidth bin width must be finite and > 0, got ", b.width);
-    require(std::isfinite(b.origin), "feature ", feature, ": FixedWidth origin must be finite, got ",
-            b.origin);
+    require(std::isfinite(b.origin), "feature ", feature,
+            ": FixedWidth origin must be finite, got ", b.origin);
   } else if (b.rule == BinCountRule::Fixed) {
     require(b.bins >= 1, "feature ", feature, ": bin count must be >= 1, got ", b.bins);
-    require(b.bins <= b.max_bins, "feature ", feature, ": bin count ", b.bins,
-            " exceeds max_bins ", b.max_bins);
+    require(b.bins <= b.max_bins, "feature ", feature, ": bin count ", b.bins, " exceeds max_bins ",
+            b.max_bins);
   }
   if (spec.periodic) {
     require(std::isfinite(spec.period) && spec.period > 0.0, "feature ", feature,
@@ -125,7 +127,8 @@ inline void validate(const FeatureSpec& spec, Eigen::Index feature) {
 /// Bins covering `range` at width `h`, or Sturges when the width degenerates to zero.
 [[nodiscard]] inline Eigen::Index bins_from_width(double range, double h, Eigen::Index n,
                                                   Eigen::Index max_bins) {
-  if (!(h > 0.0) || !(range > 0.0)) return clamp_bins(static_cast<double>(sturges_bins(n)), max_bins);
+  if (!(h > 0.0) || !(range > 0.0))
+    return clamp_bins(static_cast<double>(sturges_bins(n)), max_bins);
   return clamp_bins(std::ceil(range / h), max_bins);
 }
 
@@ -139,7 +142,8 @@ template <class Scalar>
   const Scalar hi = sorted[n - 1];
   if (!(hi > lo)) return 1;
   const auto b_max = std::min<Eigen::Index>(
-      max_bins, std::max<Eigen::Index>(1, static_cast<Eigen::Index>(std::sqrt(static_cast<double>(n)))));
+      max_bins,
+      std::max<Eigen::Index>(1, static_cast<Eigen::Index>(std::sqrt(static_cast<double>(n)))));
   const double dn = static_cast<double>(n);
   Eigen::Index best_b = 1;
   double best_l = -std::numeric_limits<double>::infinity();
@@ -152,7 +156,8 @@ template <class Scalar>
       // Bin k holds [e_k, e_{k+1}); the last bin is closed and takes everything left.
       const Scalar* end = sorted + n;
       if (k + 1 < b) {
-        const auto edge = static_cast<Scalar>(static_cast<double>(lo) + static_cast<double>(k + 1) * step);
+        const auto edge =
+            static_cast<Scalar>(static_cast<double>(lo) + static_cast<double>(k + 1) * step);
         end = std::lower_bound(begin, sorted + n, edge);
       }
       const auto count = static_cast<double>(end - begin);

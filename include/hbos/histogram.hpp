@@ -45,7 +45,8 @@ namespace hbos {
 /// Scoring rules shared by every feature of a model.
 struct ScoringOptions {
   double empty_bin_count = 0.5;  ///< an empty bin scores as if it held this many samples, in (0, 1]
-  double range_tolerance = 0.5;  ///< [bins] beyond the fitted range, within this many widths: edge bin
+  double range_tolerance =
+      0.5;  ///< [bins] beyond the fitted range, within this many widths: edge bin
 };
 
 namespace detail {
@@ -132,8 +133,8 @@ class Histogram {
   }
 
   template <class Column>
-  void place_uniform_edges(const Column& column, const FeatureSpec& spec, std::vector<Scalar>& scratch,
-                           Index feature);
+  void place_uniform_edges(const Column& column, const FeatureSpec& spec,
+                           std::vector<Scalar>& scratch, Index feature);
   void place_equal_frequency_edges(const Scalar* sorted, Index n, Index k);
   template <class Column>
   void count_and_score(const Column& values, const ScoringOptions& options);
@@ -145,13 +146,13 @@ class Histogram {
   std::vector<Index> counts_;
   std::vector<Scalar> contribution_;
   Scalar lo_ = 0, hi_ = 0;
-  Scalar inv_width_ = 0;                  // uniform bins only (0 for a constant feature)
-  Scalar period_ = 0;                     // periodic only
+  Scalar inv_width_ = 0;  // uniform bins only (0 for a constant feature)
+  Scalar period_ = 0;     // periodic only
   Scalar tolerance_lo_ = 0, tolerance_hi_ = 0;
-  Scalar below_ = 0, above_ = 0;          // contributions beyond the tolerance band
+  Scalar below_ = 0, above_ = 0;  // contributions beyond the tolerance band
   Scalar cap_ = 0;
   Index mode_ = 0;
-  Index shifts_ = 1;                      // averaged shifted histograms: fine bins per coarse bin
+  Index shifts_ = 1;  // averaged shifted histograms: fine bins per coarse bin
   Tail tail_ = Tail::Both;
   bool periodic_ = false;
   bool uniform_ = true;
@@ -177,14 +178,16 @@ Eigen::Index Histogram<Scalar>::rule_bins(const Column& column, const Binning& b
       return detail::clamp_bins(static_cast<double>(detail::sturges_bins(n)), binning.max_bins);
     case BinCountRule::Scott: {
       double mean = 0.0;
-      for (Index i = 0; i < n; ++i) mean += static_cast<double>(scratch[static_cast<std::size_t>(i)]);
+      for (Index i = 0; i < n; ++i)
+        mean += static_cast<double>(scratch[static_cast<std::size_t>(i)]);
       mean /= dn;
       double ss = 0.0;
       for (Index i = 0; i < n; ++i) {
         const double d = static_cast<double>(scratch[static_cast<std::size_t>(i)]) - mean;
         ss += d * d;
       }
-      const double h = std::cbrt(24.0 * std::sqrt(3.14159265358979323846) / dn) * std::sqrt(ss / dn);
+      const double h =
+          std::cbrt(24.0 * std::sqrt(3.14159265358979323846) / dn) * std::sqrt(ss / dn);
       return detail::bins_from_width(range, h, n, binning.max_bins);
     }
     case BinCountRule::FreedmanDiaconis: {
@@ -228,9 +231,10 @@ void Histogram<Scalar>::place_uniform_edges(const Column& column, const FeatureS
     const Scalar lo = column.minCoeff();
     const Scalar hi = column.maxCoeff();
     const double first = std::floor((static_cast<double>(lo) - binning.origin) / binning.width);
-    const double last = std::floor((static_cast<double>(hi) - binning.origin) / binning.width) + 1.0;
-    detail::require(last - first <= static_cast<double>(binning.max_bins / shifts_), "feature ", feature,
-                    ": fixed bin width ", binning.width, " over the range [", lo, ", ", hi,
+    const double last =
+        std::floor((static_cast<double>(hi) - binning.origin) / binning.width) + 1.0;
+    detail::require(last - first <= static_cast<double>(binning.max_bins / shifts_), "feature ",
+                    feature, ": fixed bin width ", binning.width, " over the range [", lo, ", ", hi,
                     "] needs ", last - first, " bins, more than max_bins = ", binning.max_bins);
     k = static_cast<Index>(last - first);
     width = static_cast<Scalar>(binning.width);
@@ -253,7 +257,8 @@ void Histogram<Scalar>::place_uniform_edges(const Column& column, const FeatureS
   }
   inv_width_ = width > Scalar(0) ? Scalar(1) / width : Scalar(0);
   edges_.resize(static_cast<std::size_t>(k + 1));
-  for (Index j = 0; j < k; ++j) edges_[static_cast<std::size_t>(j)] = lo_ + static_cast<Scalar>(j) * width;
+  for (Index j = 0; j < k; ++j)
+    edges_[static_cast<std::size_t>(j)] = lo_ + static_cast<Scalar>(j) * width;
   edges_.back() = hi_;
 }
 
@@ -268,8 +273,8 @@ void Histogram<Scalar>::place_equal_frequency_edges(const Scalar* sorted, Index 
   edges_.push_back(lo_);
   Index previous = 0;
   for (Index b = 1; b < k; ++b) {
-    auto p = static_cast<Index>(std::llround(static_cast<double>(b) * static_cast<double>(n) /
-                                             static_cast<double>(k)));
+    auto p = static_cast<Index>(
+        std::llround(static_cast<double>(b) * static_cast<double>(n) / static_cast<double>(k)));
     if (p <= previous) continue;
     while (p < n && sorted[p] == sorted[p - 1]) ++p;
     if (p >= n) break;
@@ -289,7 +294,8 @@ void Histogram<Scalar>::count_and_score(const Column& values, const ScoringOptio
   if (periodic_) {
     for (Index i = 0; i < n; ++i) ++counts_[static_cast<std::size_t>(uniform_bin(values.coeff(i)))];
   } else {
-    for (Index i = 0; i < n; ++i) ++counts_[static_cast<std::size_t>(in_range_bin(values.coeff(i)))];
+    for (Index i = 0; i < n; ++i)
+      ++counts_[static_cast<std::size_t>(in_range_bin(values.coeff(i)))];
   }
 
   contribution_.resize(k);
@@ -314,15 +320,23 @@ void Histogram<Scalar>::count_and_score(const Column& values, const ScoringOptio
           left = (left % kk + kk) % kk;
           right = right % kk;
         }
-        if (left >= 0) mass += weight * static_cast<double>(counts_[static_cast<std::size_t>(left)]);
-        if (right < kk) mass += weight * static_cast<double>(counts_[static_cast<std::size_t>(right)]);
+        if (left >= 0)
+          mass += weight * static_cast<double>(counts_[static_cast<std::size_t>(left)]);
+        if (right < kk)
+          mass += weight * static_cast<double>(counts_[static_cast<std::size_t>(right)]);
       }
       contribution_[static_cast<std::size_t>(i)] = static_cast<Scalar>(mass);
     }
     // Heights h_i = mass_i / width_i, in double; only ratios to h_max matter. An empty
     // neighbourhood counts as `empty_bin_count` samples.
+    // Uniform bins share one nominal width: using it (not edge differences, which carry the
+    // rounding of lo + j * width) keeps heights exactly proportional to mass, and scores exactly
+    // invariant under affine maps of the feature.
+    auto width_of = [&](std::size_t i) {
+      return uniform_ ? 1.0 : static_cast<double>(edges_[i + 1]) - static_cast<double>(edges_[i]);
+    };
     auto height = [&](std::size_t i, bool regularise) {
-      const double w = static_cast<double>(edges_[i + 1]) - static_cast<double>(edges_[i]);
+      const double w = width_of(i);
       const double mass = static_cast<double>(contribution_[i]);
       return (regularise && !(mass > 0.0) ? options.empty_bin_count : mass) / w;
     };
@@ -334,7 +348,7 @@ void Histogram<Scalar>::count_and_score(const Column& values, const ScoringOptio
         h_max = h;
         mode_ = static_cast<Index>(i);
       }
-      w_max = std::max(w_max, static_cast<double>(edges_[i + 1]) - static_cast<double>(edges_[i]));
+      w_max = std::max(w_max, width_of(i));
     }
     for (std::size_t i = 0; i < k; ++i)
       contribution_[i] = static_cast<Scalar>(std::max(0.0, std::log(h_max / height(i, true))));
@@ -347,11 +361,15 @@ void Histogram<Scalar>::count_and_score(const Column& values, const ScoringOptio
   // One-sided tails: zero on the good side of the mode, a running maximum on the anomalous side.
   const auto mode = static_cast<std::size_t>(mode_);
   if (tail_ == Tail::Upper) {
-    std::fill(contribution_.begin(), contribution_.begin() + static_cast<std::ptrdiff_t>(mode) + 1, Scalar(0));
-    for (std::size_t b = mode + 1; b < k; ++b) contribution_[b] = std::max(contribution_[b], contribution_[b - 1]);
+    std::fill(contribution_.begin(), contribution_.begin() + static_cast<std::ptrdiff_t>(mode) + 1,
+              Scalar(0));
+    for (std::size_t b = mode + 1; b < k; ++b)
+      contribution_[b] = std::max(contribution_[b], contribution_[b - 1]);
   } else if (tail_ == Tail::Lower) {
-    std::fill(contribution_.begin() + static_cast<std::ptrdiff_t>(mode), contribution_.end(), Scalar(0));
-    for (std::size_t b = mode; b-- > 0;) contribution_[b] = std::max(contribution_[b], contribution_[b + 1]);
+    std::fill(contribution_.begin() + static_cast<std::ptrdiff_t>(mode), contribution_.end(),
+              Scalar(0));
+    for (std::size_t b = mode; b-- > 0;)
+      contribution_[b] = std::max(contribution_[b], contribution_[b + 1]);
   }
   below_ = tail_ == Tail::Upper ? Scalar(0) : cap_;
   above_ = tail_ == Tail::Lower ? Scalar(0) : cap_;
@@ -377,10 +395,12 @@ void Histogram<Scalar>::refit(const Column& column, const FeatureSpec& spec,
   const BinCountRule rule = spec.binning.rule;
   const bool equal_frequency = spec.binning.method == BinningMethod::EqualFrequency;
   const bool needs_sorted =
-      equal_frequency || (spec.binning.method == BinningMethod::EqualWidth &&
-                          (rule == BinCountRule::FreedmanDiaconis || rule == BinCountRule::BirgeRozenblac));
-  const bool needs_copy = periodic_ || needs_sorted ||
-                          (spec.binning.method == BinningMethod::EqualWidth && rule == BinCountRule::Scott);
+      equal_frequency ||
+      (spec.binning.method == BinningMethod::EqualWidth &&
+       (rule == BinCountRule::FreedmanDiaconis || rule == BinCountRule::BirgeRozenblac));
+  const bool needs_copy =
+      periodic_ || needs_sorted ||
+      (spec.binning.method == BinningMethod::EqualWidth && rule == BinCountRule::Scott);
   if (!needs_copy) {
     // The common case (equal or fixed width, a rule that needs only n): two passes over the
     // caller's column, no copy.

@@ -68,9 +68,10 @@ void require_finite(const Eigen::DenseBase<Derived>& x, const char* what) {
 }
 
 inline void validate(const HbosParams& params, Eigen::Index n_features) {
-  require(params.features.empty() || static_cast<Eigen::Index>(params.features.size()) == n_features,
-          "params.features has ", params.features.size(), " specs but the data has ", n_features,
-          " features");
+  require(
+      params.features.empty() || static_cast<Eigen::Index>(params.features.size()) == n_features,
+      "params.features has ", params.features.size(), " specs but the data has ", n_features,
+      " features");
   validate(params.scoring);
   for (Eigen::Index j = 0; j < n_features; ++j) validate(params.spec(j), j);
 }
@@ -85,8 +86,8 @@ void fit_histograms(std::vector<Histogram<Scalar>>& histograms, const Eigen::Den
   require_finite(x, "X");
   histograms.resize(static_cast<std::size_t>(x.cols()));
   for (Eigen::Index j = 0; j < x.cols(); ++j)
-    histograms[static_cast<std::size_t>(j)].refit(x.derived().col(j), params.spec(j), params.scoring,
-                                                  scratch, j);
+    histograms[static_cast<std::size_t>(j)].refit(x.derived().col(j), params.spec(j),
+                                                  params.scoring, scratch, j);
 }
 
 /// Writes each row's contribution of feature j into column j of `out` (n x d).
@@ -96,19 +97,21 @@ void write_contributions(const std::vector<Histogram<Scalar>>& histograms,
   for (Eigen::Index j = 0; j < x.cols(); ++j) {
     const Histogram<Scalar>& h = histograms[static_cast<std::size_t>(j)];
     const auto column = x.derived().col(j);
-    for (Eigen::Index i = 0; i < x.rows(); ++i) out.derived().coeffRef(i, j) = h.contribution(column.coeff(i));
+    for (Eigen::Index i = 0; i < x.rows(); ++i)
+      out.derived().coeffRef(i, j) = h.contribution(column.coeff(i));
   }
 }
 
 /// Writes each row's score (the sum over features) into `out` (n).
 template <class Scalar, class Derived, class Out>
-void write_scores(const std::vector<Histogram<Scalar>>& histograms, const Eigen::DenseBase<Derived>& x,
-                  Eigen::DenseBase<Out>& out) {
+void write_scores(const std::vector<Histogram<Scalar>>& histograms,
+                  const Eigen::DenseBase<Derived>& x, Eigen::DenseBase<Out>& out) {
   out.derived().setZero();
   for (Eigen::Index j = 0; j < x.cols(); ++j) {
     const Histogram<Scalar>& h = histograms[static_cast<std::size_t>(j)];
     const auto column = x.derived().col(j);
-    for (Eigen::Index i = 0; i < x.rows(); ++i) out.derived().coeffRef(i) += h.contribution(column.coeff(i));
+    for (Eigen::Index i = 0; i < x.rows(); ++i)
+      out.derived().coeffRef(i) += h.contribution(column.coeff(i));
   }
 }
 
@@ -123,7 +126,8 @@ class Hbos {
   using Index = Eigen::Index;
   using Vector = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
   using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
-  using RowMajorMap = Eigen::Map<const Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>;
+  using RowMajorMap =
+      Eigen::Map<const Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>;
 
   /// Fits one histogram per column of `x` (rows = samples).
   /// \throws InvalidArgument on empty input, non-finite values or invalid parameters.

@@ -5,12 +5,12 @@
 /// Convention for every rule (as PyOD's `labels_`): a sample is an **outlier when its score is
 /// strictly greater than the threshold**; inliers have `score <= threshold`.
 ///
-/// | rule            | threshold                                                 | source              |
+/// | rule            | threshold                                                 | source |
 /// |-----------------|-----------------------------------------------------------|---------------------|
-/// | AdaptiveRange   | `range_alpha * (max - min) + min`                         | the HBOS-SLAM paper, eq. 6 |
-/// | Contamination   | the `(1 - c)` percentile, numpy's linear interpolation    | PyOD `threshold_`   |
-/// | MedianMad       | `median + k * s * MAD`, `s = 1.4826` when `scale_to_sigma` | robust statistics   |
-/// | FixedThreshold  | `value`                                                   |                     |
+/// | AdaptiveRange   | `range_alpha * (max - min) + min`                         | the HBOS-SLAM
+/// paper, eq. 6 | | Contamination   | the `(1 - c)` percentile, numpy's linear interpolation    |
+/// PyOD `threshold_`   | | MedianMad       | `median + k * s * MAD`, `s = 1.4826` when
+/// `scale_to_sigma` | robust statistics   | | FixedThreshold  | `value` |                     |
 ///
 /// Threading: every function here is re-entrant; the scratch buffer is the caller's.
 
@@ -40,8 +40,8 @@ struct Contamination {
 /// Robust z-score rule: `median + k * s * MAD`, with MAD the median absolute deviation from the
 /// median and `s = 1.4826` (the normal-consistency factor) when `scale_to_sigma` is set.
 struct MedianMad {
-  double k = 3.0;               ///< number of (scaled) MADs above the median, > 0
-  bool scale_to_sigma = true;   ///< multiply MAD by 1.4826 so k counts standard deviations
+  double k = 3.0;              ///< number of (scaled) MADs above the median, > 0
+  bool scale_to_sigma = true;  ///< multiply MAD by 1.4826 so k counts standard deviations
 };
 
 /// A fixed cut-off on the score.
@@ -64,8 +64,9 @@ struct Thresholded {
 namespace detail {
 
 /// `a * b` rounded to T before the caller uses it. Bit-parity with numpy needs a product and a
-/// following addition to round twice; GCC (GNU mode, -ffp-contract=fast) and Clang (-ffp-contract=on)
-/// may fuse them into one FMA when the target has FMA (-march=native, -mfma), and GCC ignores
+/// following addition to round twice; GCC (GNU mode, -ffp-contract=fast) and Clang
+/// (-ffp-contract=on) may fuse them into one FMA when the target has FMA (-march=native, -mfma),
+/// and GCC ignores
 /// `#pragma STDC FP_CONTRACT`. Storing the product through a volatile forces the rounding on
 /// every compiler; it costs one store/load, so it is used only where parity depends on it.
 template <class T>
@@ -99,8 +100,8 @@ void require_finite_scores(const Eigen::DenseBase<Derived>& scores) {
 }
 
 /// numpy.percentile(a, 100*q, method="linear") on `values` (reordered in place), bit-identical to
-/// numpy: v = (n-1) q, i = floor(v), g = v - i, then numpy's `_lerp`, which evaluates from the upper
-/// end when g >= 0.5.
+/// numpy: v = (n-1) q, i = floor(v), g = v - i, then numpy's `_lerp`, which evaluates from the
+/// upper end when g >= 0.5.
 template <class Scalar>
 Scalar numpy_percentile_linear(Scalar* first, Scalar* last, double q) {
   const auto n = static_cast<std::size_t>(last - first);
@@ -138,7 +139,8 @@ typename Derived::Scalar compute_threshold(const Eigen::DenseBase<Derived>& scor
   const Eigen::Index n = scores.size();
   auto copy_to_scratch = [&]() {
     scratch.resize(static_cast<std::size_t>(n));
-    for (Eigen::Index i = 0; i < n; ++i) scratch[static_cast<std::size_t>(i)] = scores.derived().coeff(i);
+    for (Eigen::Index i = 0; i < n; ++i)
+      scratch[static_cast<std::size_t>(i)] = scores.derived().coeff(i);
     return scratch.data();
   };
   if (const auto* r = std::get_if<AdaptiveRange>(&rule)) {

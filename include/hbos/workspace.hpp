@@ -32,8 +32,8 @@ namespace hbos {
 /// What one `Workspace::run` decided.
 template <class Scalar>
 struct FrameSummary {
-  Scalar threshold{};        ///< outliers have score > threshold
-  Eigen::Index n_rows = 0;   ///< samples screened
+  Scalar threshold{};       ///< outliers have score > threshold
+  Eigen::Index n_rows = 0;  ///< samples screened
   Eigen::Index n_inliers = 0;
   [[nodiscard]] Eigen::Index n_outliers() const { return n_rows - n_inliers; }
 };
@@ -98,11 +98,11 @@ class Workspace {
   /// Scores of the last run (one per row).
   [[nodiscard]] VectorMap scores() const { return VectorMap(scores_.data(), rows_); }
   /// Per-feature contributions of the last run (rows x features); rows sum to scores().
-  [[nodiscard]] MatrixMap contributions() const { return MatrixMap(contributions_.data(), rows_, cols_); }
-  /// inlier()[i] == (scores()[i] <= threshold) for the last run.
-  [[nodiscard]] MaskMap inlier() const {
-    return MaskMap(inlier_.get(), rows_);
+  [[nodiscard]] MatrixMap contributions() const {
+    return MatrixMap(contributions_.data(), rows_, cols_);
   }
+  /// inlier()[i] == (scores()[i] <= threshold) for the last run.
+  [[nodiscard]] MaskMap inlier() const { return MaskMap(inlier_.get(), rows_); }
   /// The histogram of feature j fitted by the last run.
   [[nodiscard]] const Histogram<Scalar>& histogram(Index j) const {
     detail::require(j >= 0 && j < cols_, "feature index ", j, " out of range [0, ", cols_, ")");

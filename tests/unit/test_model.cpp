@@ -1,0 +1,244 @@
+// Tests of hbos/model.hpp: properties on many seeded data sets, input forms, threading and every
+// bad input.
+
+#include <hbos/model.hpp>
+
+#include <algorithm>
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <limits>
+#include <random>
+#include <thread>
+#include <vector>
+
+// Every member of the class template compiles for both scalar types.
+template class hbos::Hbos<float>;
+template class hbos::Hbos<double>;
+
+namespace {
+
+using Matrix = Eigen::MatrixXd;
+
+/// A seeded data set with features of different shapes and scales.
+Matrix make_data(std::uint32_t seed, Eigen::Index n, Eigen::Index d) {
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> normal;
+  std::exponential_distribution<double> expo(0.5);
+  std::uniform_real_distribution<double> uniform(-3.0, 7.0);
+  Matrix x(n, d);
+  for (Eigen::Index j = 0; j < d; ++j)
+    for (Eigen::Index i = 0; i < n; ++i)
+      x(i, j) = j % 3 == 0 ? normal(rng) * 4.0 + 1.0 : j % 3 == 1 ? expo(rng) : uniform(rng);
+  return x;
+}
+
+/// The specs every property is checked under.
+std::vector<hbos::HbosParams> all_modes() {
+  std::vector<hbos::HbosParams> modes;
+  modes.emplace_back();  // default: 5 bins x 5 shifts
+  hbos::HbosParams p;
+  p.feature.binning.shifts = 1;
+  p.feature.binning.bins = 10;
+  modes.push_back(p);  // classic static
+  p.feature.binning.method = hbos::BinningMethod::EqualFrequency;
+  modes.push_back(p);  // dynamic
+  p = {};
+  p.feature.binning.rule = hbos::BinCountRule::BirgeRozenblac;
+  modes.push_back(p);
+  p.feature.binning.rule = hbos::BinCountRule::FreedmanDiaconis;
+  p.feature.tail = hbos::Tail::Upper;
+  modes.push_back(p);
+  return modes;
+}
+
+}  // namespace
+
+TEST_CASE("contributions sum to the score", "[model][property]") {
+  for (std::uint32_t seed = 1; seed <= 20; ++seed) {
+    const Matrix x = make_data(seed, 200 + 37 * seed, 1 + seed % 5);
+    for (const auto& params : all_modes()) {
+      const auto model = hbos::Hbosd::fit(x, params);
+      const Eigen::VectorXd scores = model.score(x);
+      const Eigen::MatrixXd contributions = model.contributions(x);
+      CHECK((contributions.rowwise().sum() - scores).cwiseAbs().maxCoeff() < 1e-12);
+      CHECK(contributions.minCoeff() >= 0.0);
+    }
+  }
+}
+
+TEST_CASE("permuting features leaves the scores unchanged", "[model][property]") {
+  for (std::uint32_t seed = 1; seed <= 20; ++seed) {
+    const Matrix x = make_data(seed, 300, 4);
+    Eigen::VectorXi order(4);
+    order << 2, 0, 3, 1;
+    Matrix permuted(x.rows(), 4);
+    for (Eigen::Index j = 0; j < 4; ++j) permuted.col(j) = x.col(order(j));
+    for (const auto& params : all_modes()) {
+      const Eigen::VectorXd a = hbos::Hbosd::fit(x, params).score(x);
+      const Eigen::VectorXd b = hbos::Hbosd::fit(permuted, params).score(permuted);
+      CHECK((a - b).cwiseAbs().maxCoeff() < 1e-12);
+    }
+  }
+}
+
+TEST_CASE("scores are invariant under positive affine maps of any feature", "[model][property]") {
+  std::mt19937 rng(99);
+  std::uniform_real_distribution<double> log_scale(-6.0, 6.0);
+  std::uniform_real_distribution<double> offset(-50.0, 50.0);  // in units of the new scale
+  for (std::uint32_t seed = 1; seed <= 25; ++seed) {
+    const Matrix x = make_data(seed, 500, 3);
+    Matrix mapped = x;
+    for (Eigen::Index j = 0; j < 3; ++j) {
+      const double a = std::pow(10.0, log_scale(rng));
+      const double b = offset(rng) * a;  // larger offsets would round the data itself
+      mapped.col(j) = (x.col(j).array() * a + b).matrix();
+    }
+    for (const auto& params : all_modes()) {
+      const auto fitted = hbos::Hbosd::fit(x, params);
+      const auto fitted_mapped = hbos::Hbosd::fit(mapped, params);
+      const Eigen::VectorXd a = fitted.score(x);
+      const Eigen::VectorXd b = fitted_mapped.score(mapped);
+      INFO("seed " << seed);
+      CHECK((a - b).cwiseAbs().maxCoeff() < 1e-9);
+    }
+  }
+}
+
+TEST_CASE("a sample in every feature's modal bin scores lowest", "[model][property]") {
+  for (std::uint32_t seed = 1; seed <= 20; ++seed) {
+    const Matrix x = make_data(seed, 400, 3);
+    for (const auto& params : all_modes()) {
+      const auto model = hbos::Hbosd::fit(x, params);
+      const Eigen::VectorXd scores = model.score(x);
+      bool any_modal = false;
+      for (Eigen::Index i = 0; i < x.rows(); ++i) {
+        bool modal = true;
+        for (Eigen::Index j = 0; j < x.cols(); ++j)
+          modal = modal && model.histogram(j).bin_of(x(i, j)) == model.histogram(j).mode();
+        if (modal) {
+          any_modal = true;
+          CHECK(scores(i) == 0.0);
+        }
+      }
+      CHECK(scores.minCoeff() >= 0.0);
+      if (any_modal) CHECK(scores.minCoeff() == 0.0);
+    }
+  }
+}
+
+TEST_CASE("float and double agree", "[model][property]") {
+  for (std::uint32_t seed = 1; seed <= 10; ++seed) {
+    const Matrix x = make_data(seed, 1000, 3);
+    const Eigen::MatrixXf xf = x.cast<float>();
+    for (const auto& params : all_modes()) {
+      const Eigen::VectorXd sd = hbos::Hbosd::fit(x, params).score(x);
+      const Eigen::VectorXf sf = hbos::Hbosf::fit(xf, params).score(xf);
+      // Values within float rounding of a bin edge may land in the neighbouring bin; everything
+      // else must agree to float precision.
+      Eigen::Index differ = 0;
+      for (Eigen::Index i = 0; i < x.rows(); ++i)
+        differ += std::abs(sd(i) - static_cast<double>(sf(i))) > 1e-4 * (1.0 + sd(i)) ? 1 : 0;
+      CHECK(differ <= 2);
+    }
+  }
+}
+
+TEST_CASE("maps, blocks and row-major buffers give the same scores", "[model]") {
+  const Matrix x = make_data(5, 250, 3);
+  const auto reference = hbos::Hbosd::fit(x).score(x);
+
+  const Eigen::Map<const Matrix> map(x.data(), x.rows(), x.cols());
+  CHECK(hbos::Hbosd::fit(map).score(map) == reference);
+
+  Matrix wide(300, 5);
+  wide.setZero();
+  wide.block(10, 1, 250, 3) = x;
+  const auto block = wide.block(10, 1, 250, 3);
+  CHECK(hbos::Hbosd::fit(block).score(block) == reference);
+
+  const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> row_major = x;
+  const auto model = hbos::Hbosd::fit_row_major(row_major.data(), 250, 3);
+  CHECK(model.score_row_major(row_major.data(), 250, 3) == reference);
+
+  Eigen::VectorXd into(250);
+  model.score_into(x, into);
+  CHECK(into == reference);
+}
+
+TEST_CASE("one fitted model scores from many threads", "[model][threads]") {
+  const Matrix x = make_data(8, 2000, 4);
+  const auto model = hbos::Hbosd::fit(x);
+  const Eigen::VectorXd reference = model.score(x);
+  std::vector<Eigen::VectorXd> results(4);
+  std::vector<std::thread> threads;
+  for (std::size_t t = 0; t < results.size(); ++t)
+    threads.emplace_back([&, t] {
+      for (int repeat = 0; repeat < 5; ++repeat) results[t] = model.score(x);
+    });
+  for (auto& t : threads) t.join();
+  for (const auto& r : results) CHECK(r == reference);
+}
+
+TEST_CASE("bad input throws InvalidArgument naming the problem", "[model][errors]") {
+  const Matrix x = make_data(3, 50, 2);
+  using hbos::InvalidArgument;
+  CHECK_THROWS_AS(hbos::Hbosd::fit(Matrix(0, 2)), InvalidArgument);
+  CHECK_THROWS_WITH(hbos::Hbosd::fit(Matrix(0, 2)), Catch::Contains("empty"));
+  CHECK_THROWS_WITH(hbos::Hbosd::fit(Matrix(5, 0)), Catch::Contains("no features"));
+
+  Matrix bad = x;
+  bad(7, 1) = std::numeric_limits<double>::quiet_NaN();
+  CHECK_THROWS_WITH(hbos::Hbosd::fit(bad), Catch::Contains("X(7, 1) is not finite"));
+  bad(7, 1) = std::numeric_limits<double>::infinity();
+  CHECK_THROWS_WITH(hbos::Hbosd::fit(bad), Catch::Contains("X(7, 1) is not finite"));
+
+  const auto model = hbos::Hbosd::fit(x);
+  CHECK_THROWS_WITH(model.score(Matrix::Zero(3, 3)),
+                    Catch::Contains("fitted on 2 features") && Catch::Contains("3 columns"));
+  CHECK_THROWS_WITH(model.score(bad), Catch::Contains("not finite"));
+  Eigen::VectorXd wrong_size(3);
+  CHECK_THROWS_WITH(model.score_into(x, wrong_size), Catch::Contains("3 entries for 50 rows"));
+  CHECK_THROWS_WITH(model.histogram(2), Catch::Contains("out of range"));
+
+  hbos::HbosParams params;
+  params.feature.binning.bins = 0;
+  CHECK_THROWS_WITH(hbos::Hbosd::fit(x, params), Catch::Contains("bin count must be >= 1"));
+  params = {};
+  params.features.resize(3);
+  CHECK_THROWS_WITH(hbos::Hbosd::fit(x, params),
+                    Catch::Contains("3 specs") && Catch::Contains("2 features"));
+  params = {};
+  params.scoring.empty_bin_count = 0.0;
+  CHECK_THROWS_WITH(hbos::Hbosd::fit(x, params), Catch::Contains("empty_bin_count"));
+  params = {};
+  params.scoring.range_tolerance = -1.0;
+  CHECK_THROWS_WITH(hbos::Hbosd::fit(x, params), Catch::Contains("range_tolerance"));
+  CHECK_THROWS_WITH(hbos::Hbosd::fit_row_major(nullptr, 3, 2), Catch::Contains("null"));
+
+  // InvalidArgument is a std::invalid_argument, so generic handlers keep working.
+  CHECK_THROWS_AS(hbos::Hbosd::fit(Matrix(0, 2)), std::invalid_argument);
+}
+
+TEST_CASE("per-feature specs: a periodic angle next to a one-sided magnitude", "[model]") {
+  const double pi = 3.14159265358979323846;
+  std::mt19937 rng(4);
+  std::gamma_distribution<double> magnitude(2.0, 0.5);
+  std::uniform_real_distribution<double> angle(-pi, pi);
+  Matrix x(500, 2);
+  for (Eigen::Index i = 0; i < 500; ++i) {
+    x(i, 0) = magnitude(rng);
+    x(i, 1) = angle(rng);
+  }
+  hbos::HbosParams params;
+  params.features = {params.feature, hbos::angle_feature(12)};
+  params.features[0].tail = hbos::Tail::Upper;
+  const auto model = hbos::Hbosd::fit(x, params);
+  CHECK(model.histogram(1).periodic());
+  CHECK(model.histogram(0).tail() == hbos::Tail::Upper);
+  Matrix probe(2, 2);
+  probe << 0.0, 1.0,  // better than typical: the magnitude never penalises it
+      50.0, 1.0;      // a gross residual: capped
+  const Eigen::MatrixXd c = model.contributions(probe);
+  CHECK(c(0, 0) == 0.0);
+  CHECK(c(1, 0) == model.histogram(0).cap());
+}
