@@ -1,0 +1,120 @@
+// Tests of hbos/workspace.hpp: it agrees with the one-call API, and after warm-up it fits, scores
+// and thresholds a frame without a single heap allocation (counted, not assumed).
+
+#include <hbos/workspace.hpp>
+
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "../support/alloc_counter.hpp"
+
+template class hbos::Workspace<float>;
+template class hbos::Workspace<double>;
+
+namespace {
+
+/// One frame of residual-like features: magnitude (px) and direction (rad).
+template <class Scalar>
+Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic> residual_frame(std::mt19937& rng,
+                                                                     Eigen::Index n) {
+  std::normal_distribution<double> noise(0.0, 1.0);
+  Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic> x(n, 2);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const double dx = noise(rng) + (i % 10 == 0 ? 8.0 : 0.0);  // a coherent moving 10 %
+    const double dy = noise(rng);
+    x(i, 0) = static_cast<Scalar>(std::hypot(dx, dy));
+    x(i, 1) = static_cast<Scalar>(std::atan2(dy, dx));
+  }
+  return x;
+}
+
+hbos::HbosParams residual_params() {
+  hbos::HbosParams params;
+  hbos::FeatureSpec magnitude;
+  magnitude.binning.method = hbos::BinningMethod::FixedWidth;
+  magnitude.binning.width = 0.5;  // [px]
+  magnitude.binning.max_bins = 4096;
+  magnitude.tail = hbos::Tail::Upper;
+  params.features = {magnitude, hbos::angle_feature(16)};
+  return params;
+}
+
+}  // namespace
+
+TEST_CASE("the workspace agrees with fit + score + threshold_scores", "[workspace]") {
+  std::mt19937 rng(2);
+  for (const auto& params : {hbos::HbosParams{}, residual_params()}) {
+    for (const hbos::ThresholdRule& rule : {hbos::ThresholdRule{hbos::AdaptiveRange{0.7}},
+                                            hbos::ThresholdRule{hbos::Contamination{0.1}},
+                                            hbos::ThresholdRule{hbos::MedianMad{3.0}}}) {
+      hbos::Workspace<double> ws(params, rule);
+      for (Eigen::Index n : {100, 1000, 37, 2000}) {
+        const Eigen::MatrixXd x = residual_frame<double>(rng, n);
+        const auto summary = ws.run(x);
+        const auto model = hbos::Hbosd::fit(x, params);
+        const Eigen::VectorXd scores = model.score(x);
+        const auto expected = hbos::threshold_scores(scores, rule);
+        CHECK((ws.scores() - scores).cwiseAbs().maxCoeff() < 1e-12);
+        CHECK((ws.contributions() - model.contributions(x)).cwiseAbs().maxCoeff() < 1e-12);
+        CHECK(summary.threshold == Approx(expected.threshold).epsilon(1e-12));
+        CHECK(summary.n_inliers == expected.n_inliers);
+        CHECK(summary.n_rows == n);
+        CHECK((ws.inlier() == expected.inlier).all());
+        CHECK(ws.histogram(0).bins() == model.histogram(0).bins());
+      }
+    }
+  }
+}
+
+TEMPLATE_TEST_CASE("no heap allocation after warm-up", "[workspace][alloc]", float, double) {
+  std::mt19937 rng(3);
+  for (const auto& params : {hbos::HbosParams{}, residual_params()}) {
+    for (const hbos::ThresholdRule& rule : {hbos::ThresholdRule{hbos::AdaptiveRange{0.7}},
+                                            hbos::ThresholdRule{hbos::Contamination{0.1}},
+                                            hbos::ThresholdRule{hbos::MedianMad{3.0}}}) {
+      hbos::Workspace<TestType> ws(params, rule);
+      // Frames generated up front: only the workspace may run while counting.
+      std::vector<Eigen::Matrix<TestType, Eigen::Dynamic, Eigen::Dynamic>> frames;
+      for (Eigen::Index n : {1000, 300, 1000, 700, 999, 1000})
+        frames.push_back(residual_frame<TestType>(rng, n));
+      ws.run(frames[0]);  // warm-up: grows every buffer to the largest frame
+      // A reserve() large enough for any bin count seen makes later frames allocation-free even
+      // when their fixed-width range (and so their bin count) grows.
+      ws.reserve(1000, 2, 4096);
+      hbos_test::AllocationCounter counter;
+      Eigen::Index inliers = 0;
+      for (const auto& frame : frames) inliers += ws.run(frame).n_inliers;
+      CHECK(counter.count() == 0);
+      CHECK(inliers > 0);
+    }
+  }
+}
+
+TEST_CASE("the counting allocator does count", "[workspace][alloc]") {
+  // Guards the test above against a counter that never counts.
+  hbos_test::AllocationCounter counter;
+  auto* p = new std::vector<int>(100);
+  delete p;
+  CHECK(counter.count() >= 2);
+}
+
+TEST_CASE("reserve() makes even the first frame allocation-free", "[workspace][alloc]") {
+  std::mt19937 rng(4);
+  const Eigen::MatrixXd x = residual_frame<double>(rng, 1500);
+  hbos::Workspace<double> ws(hbos::HbosParams{}, hbos::AdaptiveRange{0.7});
+  ws.reserve(2000, 2);
+  hbos_test::AllocationCounter counter;
+  ws.run(x);
+  CHECK(counter.count() == 0);
+}
+
+TEST_CASE("workspace bad input", "[workspace][errors]") {
+  CHECK_THROWS_WITH((hbos::Workspace<double>(hbos::HbosParams{}, hbos::AdaptiveRange{1.5})),
+                    Catch::Contains("range_alpha"));
+  hbos::Workspace<double> ws;
+  CHECK_THROWS_WITH(ws.run(Eigen::MatrixXd(0, 2)), Catch::Contains("empty"));
+  ws.run(Eigen::MatrixXd::Random(10, 2));
+  CHECK_THROWS_WITH(ws.histogram(2), Catch::Contains("out of range"));
+}
