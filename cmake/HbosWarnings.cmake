@@ -1,6 +1,10 @@
 # Warnings and sanitizers are applied per target, never globally, so a parent project that
 # add_subdirectory()s hbos keeps its own flags.
 function(hbos_set_warnings target)
+  # An explicit -std=c++17 (not the compiler's gnu++17 default) so that tools reading
+  # compile_commands.json, such as clang-tidy, see the same language as the compiler.
+  set_target_properties(${target} PROPERTIES CXX_STANDARD 17 CXX_STANDARD_REQUIRED ON
+                                             CXX_EXTENSIONS OFF)
   if(CMAKE_CXX_COMPILER_ID MATCHES "GNU|Clang")
     target_compile_options(${target} PRIVATE
       -Wall -Wextra -Wpedantic -Wconversion -Wsign-conversion -Wshadow)

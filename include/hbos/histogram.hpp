@@ -233,9 +233,10 @@ void Histogram<Scalar>::place_uniform_edges(const Column& column, const FeatureS
     const double first = std::floor((static_cast<double>(lo) - binning.origin) / binning.width);
     const double last =
         std::floor((static_cast<double>(hi) - binning.origin) / binning.width) + 1.0;
-    detail::require(last - first <= static_cast<double>(binning.max_bins / shifts_), "feature ",
-                    feature, ": fixed bin width ", binning.width, " over the range [", lo, ", ", hi,
-                    "] needs ", last - first, " bins, more than max_bins = ", binning.max_bins);
+    detail::require(
+        last - first <= static_cast<double>(binning.max_bins) / static_cast<double>(shifts_),
+        "feature ", feature, ": fixed bin width ", binning.width, " over the range [", lo, ", ", hi,
+        "] needs ", last - first, " bins, more than max_bins = ", binning.max_bins);
     k = static_cast<Index>(last - first);
     width = static_cast<Scalar>(binning.width);
     lo_ = static_cast<Scalar>(binning.origin + first * binning.width);
