@@ -23,6 +23,7 @@
 ///
 /// Threading: `Matches` is a plain container; concurrent const access is safe.
 
+#include <Eigen/Cholesky>
 #include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
@@ -96,8 +97,8 @@ class Matches {
   void add_stereo(const Vector2& predicted, const Vector2& observed, Scalar predicted_u_right,
                   Scalar observed_u_right, Scalar sigma = Scalar(1), bool on_dynamic_mask = false) {
     detail::require(std::isfinite(predicted_u_right) && std::isfinite(observed_u_right), "match ",
-                    size(), ": u_right is not finite (predicted ", predicted_u_right,
-                    ", observed ", observed_u_right, ")");
+                    size(), ": u_right is not finite (predicted ", predicted_u_right, ", observed ",
+                    observed_u_right, ")");
     push(predicted, observed, predicted_u_right, observed_u_right, sigma, on_dynamic_mask);
     ++n_stereo_;
   }
@@ -142,7 +143,9 @@ class Matches {
     return has_right(i) ? observed_right_[k] - predicted_right_[k] : Scalar(0);
   }
   [[nodiscard]] Scalar sigma(Index i) const { return sigma_[static_cast<std::size_t>(i)]; }
-  [[nodiscard]] bool on_dynamic_mask(Index i) const { return flag_[static_cast<std::size_t>(i)] != 0; }
+  [[nodiscard]] bool on_dynamic_mask(Index i) const {
+    return flag_[static_cast<std::size_t>(i)] != 0;
+  }
 
   /// Squared residual norm over all components (2, or 3 for stereo) [px^2].
   [[nodiscard]] Scalar squared_residual(Index i) const {
@@ -181,12 +184,31 @@ class Matches {
   Index n_stereo_ = 0;
 };
 
+/// The model of the coherent residual a rough pose gives the static matches.
+enum class ResidualCenter {
+  None,      ///< no centering: magnitudes are measured from zero
+  Constant,  ///< one dominant residual c for the whole image (mean-shift mode)
+  Affine     ///< c(p) = c + G (p - p0): also absorbs the roll and zoom a rough pose leaves
+};
+
+/// The dominant residual as a function of the predicted pixel p: c(p) = offset + gradient (p -
+/// origin).
+template <class Scalar>
+struct ResidualField {
+  Eigen::Matrix<Scalar, 2, 1> offset = Eigen::Matrix<Scalar, 2, 1>::Zero();    ///< [px]
+  Eigen::Matrix<Scalar, 2, 2> gradient = Eigen::Matrix<Scalar, 2, 2>::Zero();  ///< [px/px]
+  Eigen::Matrix<Scalar, 2, 1> origin = Eigen::Matrix<Scalar, 2, 1>::Zero();    ///< [px]
+  [[nodiscard]] Eigen::Matrix<Scalar, 2, 1> at(const Eigen::Matrix<Scalar, 2, 1>& p) const {
+    return offset + gradient * (p - origin);
+  }
+};
+
 /// How the residual features are formed (see the file comment).
 struct ResidualOptions {
-  bool whiten = true;        ///< divide the magnitude by sigma_i (units px/sigma), as chi^2 does
-  bool center = true;        ///< subtract the dominant residual c before taking magnitudes
-  double center_window = 3.0;  ///< [px/sigma] mean-shift window: residuals within it move c
-  int center_iterations = 5;   ///< mean-shift steps after the median start, >= 0
+  bool whiten = true;  ///< divide the magnitude by sigma_i (units px/sigma), as chi^2 does
+  ResidualCenter center = ResidualCenter::Affine;  ///< what is subtracted before the magnitude
+  double center_window = 3.0;  ///< [px/sigma] residuals within this of the field move it
+  int center_iterations = 5;   ///< mean-shift / reweighting steps after the median start, >= 0
 };
 
 namespace detail {
@@ -198,45 +220,151 @@ inline void validate(const ResidualOptions& o) {
           o.center_iterations);
 }
 
-/// The dominant residual of the matches with `use[i]` set: the coordinate-wise median, then
-/// `iterations` steps of a mean shift with a flat window of `window` whitened pixels, weighting
-/// each residual by 1/sigma^2 (its information). Returns (0, 0) when no match is used.
-/// `scratch` grows to the match count; nothing else is allocated.
+/// The residual samples a field is fitted to, column-wise: predicted pixel (u, v) [px],
+/// residual (rx, ry) [px] and information w = 1/sigma^2. Reused across frames.
+template <class Scalar>
+struct FieldSamples {
+  std::vector<Scalar> u, v, rx, ry, w;
+  void clear() {
+    for (auto* c : {&u, &v, &rx, &ry, &w}) c->clear();
+  }
+  void reserve(std::size_t n) {
+    for (auto* c : {&u, &v, &rx, &ry, &w}) c->reserve(n);
+  }
+  [[nodiscard]] std::size_t size() const { return w.size(); }
+};
+
+/// Copies the matches with `use(i)` into `samples` (cleared first).
 template <class Scalar, class Use>
-Eigen::Matrix<Scalar, 2, 1> dominant_residual(const Matches<Scalar>& matches, const Use& use,
-                                              double window, int iterations,
-                                              std::vector<Scalar>& scratch) {
-  const Eigen::Index n = matches.size();
-  scratch.resize(static_cast<std::size_t>(n));
+void collect_field_samples(const Matches<Scalar>& matches, const Use& use,
+                           FieldSamples<Scalar>& samples) {
+  samples.clear();
+  samples.reserve(static_cast<std::size_t>(matches.size()));
+  for (Eigen::Index i = 0; i < matches.size(); ++i) {
+    if (!use(i)) continue;
+    const Eigen::Matrix<Scalar, 2, 1> p = matches.predicted(i);
+    const Eigen::Matrix<Scalar, 2, 1> r = matches.residual(i);
+    const Scalar s = matches.sigma(i);
+    samples.u.push_back(p.x());
+    samples.v.push_back(p.y());
+    samples.rx.push_back(r.x());
+    samples.ry.push_back(r.y());
+    samples.w.push_back(Scalar(1) / (s * s));
+  }
+}
+
+/// The dominant residual of `samples`: the coordinate-wise median, then `iterations` steps of a
+/// mean shift with a flat window of `window` whitened pixels, each residual weighted by its
+/// information 1/sigma^2. (0, 0) without samples. `scratch` grows to the sample count.
+template <class Scalar>
+Eigen::Matrix<Scalar, 2, 1> dominant_residual(const FieldSamples<Scalar>& samples, double window,
+                                              int iterations, std::vector<Scalar>& scratch) {
+  const std::size_t m = samples.size();
   Eigen::Matrix<Scalar, 2, 1> c(0, 0);
+  if (m == 0) return c;
   for (int axis = 0; axis < 2; ++axis) {
-    std::size_t m = 0;
-    for (Eigen::Index i = 0; i < n; ++i)
-      if (use(i)) scratch[m++] = matches.residual(i)(axis);
-    if (m == 0) return c;
+    const std::vector<Scalar>& r = axis == 0 ? samples.rx : samples.ry;
+    scratch.assign(r.begin(), r.end());
     const auto mid = scratch.begin() + static_cast<std::ptrdiff_t>(m / 2);
-    std::nth_element(scratch.begin(), mid, scratch.begin() + static_cast<std::ptrdiff_t>(m));
+    std::nth_element(scratch.begin(), mid, scratch.end());
     c(axis) = *mid;
   }
-  const Scalar window2 = static_cast<Scalar>(window * window);
+  const auto window2 = static_cast<Scalar>(window * window);
   for (int it = 0; it < iterations; ++it) {
-    Eigen::Matrix<Scalar, 2, 1> sum(0, 0);
-    Scalar weight = 0;
-    for (Eigen::Index i = 0; i < n; ++i) {
-      if (!use(i)) continue;
-      const Eigen::Matrix<Scalar, 2, 1> d = matches.residual(i) - c;
-      const Scalar s2 = matches.sigma(i) * matches.sigma(i);
-      if (d.squaredNorm() > window2 * s2) continue;
-      sum += matches.residual(i) / s2;
-      weight += Scalar(1) / s2;
+    Scalar sx = 0, sy = 0, weight = 0;
+    for (std::size_t i = 0; i < m; ++i) {
+      const Scalar dx = samples.rx[i] - c.x(), dy = samples.ry[i] - c.y();
+      // Inside the window when |d|^2 / sigma^2 <= window^2, i.e. |d|^2 w <= window^2.
+      const Scalar in = (dx * dx + dy * dy) * samples.w[i] <= window2 ? samples.w[i] : Scalar(0);
+      sx += in * samples.rx[i];
+      sy += in * samples.ry[i];
+      weight += in;
     }
     if (!(weight > Scalar(0))) break;
-    const Eigen::Matrix<Scalar, 2, 1> next = sum / weight;
+    const Eigen::Matrix<Scalar, 2, 1> next(sx / weight, sy / weight);
     const bool converged = (next - c).squaredNorm() < Scalar(1e-8);
     c = next;
     if (converged) break;
   }
   return c;
+}
+
+/// The residual field of `center` (see ResidualOptions): the constant mode, then for Affine up to
+/// `iterations` reweighted least-squares fits of c + G (p - p0) to the samples within `window`
+/// whitened pixels of the current field, each weighted by 1/sigma^2. An affine fit that is
+/// ill-conditioned (fewer than 6 supporting samples, or all on a line) keeps the previous field.
+template <class Scalar>
+ResidualField<Scalar> dominant_field(const FieldSamples<Scalar>& samples, ResidualCenter center,
+                                     double window, int iterations, std::vector<Scalar>& scratch) {
+  using Vec2 = Eigen::Matrix<Scalar, 2, 1>;
+  using Vec3 = Eigen::Matrix<Scalar, 3, 1>;
+  using Mat3 = Eigen::Matrix<Scalar, 3, 3>;
+  ResidualField<Scalar> field;
+  if (center == ResidualCenter::None) return field;
+  field.offset = dominant_residual(samples, window, iterations, scratch);
+  const std::size_t m = samples.size();
+  if (center != ResidualCenter::Affine || m < 6) return field;
+
+  // Origin at the mean prediction and a 100 px unit keep the normal equations well scaled.
+  Scalar su = 0, sv = 0;
+  for (std::size_t i = 0; i < m; ++i) {
+    su += samples.u[i];
+    sv += samples.v[i];
+  }
+  field.origin = Vec2(su, sv) / static_cast<Scalar>(m);
+  const Scalar inv_unit = Scalar(0.01);
+  const auto window2 = static_cast<Scalar>(window * window);
+  for (int it = 0; it < std::max(iterations, 1); ++it) {
+    // Normal equations of the weighted fit, accumulated as scalars (the symmetric 3 x 3 has six
+    // distinct entries) so the loop stays in registers.
+    Scalar a00 = 0, a01 = 0, a02 = 0, a11 = 0, a12 = 0, a22 = 0;
+    Scalar bx0 = 0, bx1 = 0, bx2 = 0, by0 = 0, by1 = 0, by2 = 0;
+    const Scalar ox = field.offset.x(), oy = field.offset.y();
+    const Scalar g00 = field.gradient(0, 0) * Scalar(100), g01 = field.gradient(0, 1) * Scalar(100);
+    const Scalar g10 = field.gradient(1, 0) * Scalar(100), g11 = field.gradient(1, 1) * Scalar(100);
+    std::size_t support = 0;
+    for (std::size_t i = 0; i < m; ++i) {
+      const Scalar du = (samples.u[i] - field.origin.x()) * inv_unit;
+      const Scalar dv = (samples.v[i] - field.origin.y()) * inv_unit;
+      const Scalar ex = samples.rx[i] - (ox + g00 * du + g01 * dv);
+      const Scalar ey = samples.ry[i] - (oy + g10 * du + g11 * dv);
+      const Scalar w = samples.w[i];
+      if ((ex * ex + ey * ey) * w > window2) continue;
+      const Scalar wu = w * du, wv = w * dv;
+      a00 += w;
+      a01 += wu;
+      a02 += wv;
+      a11 += wu * du;
+      a12 += wu * dv;
+      a22 += wv * dv;
+      bx0 += w * samples.rx[i];
+      bx1 += wu * samples.rx[i];
+      bx2 += wv * samples.rx[i];
+      by0 += w * samples.ry[i];
+      by1 += wu * samples.ry[i];
+      by2 += wv * samples.ry[i];
+      ++support;
+    }
+    Mat3 A;
+    A << a00, a01, a02, a01, a11, a12, a02, a12, a22;
+    const Vec3 bx(bx0, bx1, bx2), by(by0, by1, by2);
+    if (support < 6) break;
+    const Eigen::LDLT<Mat3> ldlt(A);
+    // Reject a near-singular fit (predictions on a line): keep the previous field.
+    if (ldlt.info() != Eigen::Success || !(ldlt.rcond() > Scalar(1e-6))) break;
+    const Vec3 cx = ldlt.solve(bx);
+    const Vec3 cy = ldlt.solve(by);
+    if (!cx.allFinite() || !cy.allFinite()) break;
+    const Vec2 previous = field.offset;
+    const Eigen::Matrix<Scalar, 2, 2> previous_gradient = field.gradient;
+    field.offset = Vec2(cx(0), cy(0));
+    field.gradient << cx(1) * inv_unit, cx(2) * inv_unit, cy(1) * inv_unit, cy(2) * inv_unit;
+    // Converged when the field moves by less than 1e-3 px anywhere within 400 px of the origin.
+    const Scalar change = (field.offset - previous).norm() +
+                          Scalar(400) * (field.gradient - previous_gradient).norm();
+    if (change < Scalar(1e-3)) break;
+  }
+  return field;
 }
 
 }  // namespace detail

@@ -6,11 +6,12 @@
 ///
 /// | strategy        | rejects match i when                                   | source |
 /// |-----------------|--------------------------------------------------------|--------|
-/// | HbosScreen      | its HBOS score on residual features > the threshold    | this library; `paper()` = the HBOS-SLAM paper |
-/// | FixedPixelGate  | \|r_i\| > max_px                                        | common practice |
-/// | ChiSquareGate   | \|r_i\|^2 / sigma_i^2 > 5.991 (2 dof) or 7.815 (3 dof)   | ORB-SLAM2 Optimizer::PoseOptimization |
-/// | QuantileGate    | \|r_i\| > the 0.8 quantile of \|r\| over unflagged matches | CFP-SLAM's adaptive threshold |
-/// | MadGate         | \|r_i\|/sigma_i > median + k * 1.4826 * MAD             | robust z-score |
+/// | HbosScreen      | its HBOS score on residual features > the threshold    | this library;
+/// `paper()` = the HBOS-SLAM paper | | FixedPixelGate  | \|r_i\| > max_px | common practice | |
+/// ChiSquareGate   | \|r_i\|^2 / sigma_i^2 > 5.991 (2 dof) or 7.815 (3 dof)   | ORB-SLAM2
+/// Optimizer::PoseOptimization | | QuantileGate    | \|r_i\| > the 0.8 quantile of \|r\| over
+/// unflagged matches | CFP-SLAM's adaptive threshold | | MadGate         | \|r_i\|/sigma_i > median
+/// + k * 1.4826 * MAD             | robust z-score |
 ///
 /// Each strategy's `score` is its decision statistic (higher = worse) and its threshold the
 /// cut on it, so results of every strategy read the same way.
@@ -71,16 +72,17 @@ struct HbosScreen {
   /// [px/sigma or px] magnitudes are clipped here before binning: everything beyond is an outlier
   /// anyway, and it bounds the bin count (and so the memory) whatever the input.
   double magnitude_clip = 64.0;
-  AngleFeature angle = AngleFeature::None;  ///< angle evidence
+  AngleFeature angle = AngleFeature::None;     ///< angle evidence
   FeatureSpec angle_spec = angle_feature(16);  ///< binning of the angle [rad]
   double angle_gate = 2.447;  ///< [px/sigma] AboveNoise: only residuals above this carry an angle
   ScoringOptions scoring{};   ///< empty-bin rule of the histograms
   /// The cut on the summed score. FixedThreshold{t} rejects bins whose density is below
   /// exp(-t) of the modal bin's.
-  ThresholdRule threshold = FixedThreshold{3.0};
+  ThresholdRule threshold = FixedThreshold{1.5};
   /// [px/sigma] noise floor: a match whose (centered, whitened) magnitude is at most this is never
-  /// rejected; 0 disables it. 2.447 = sqrt(5.991), ORB-SLAM2's 2-dof chi^2 gate.
-  double keep_below = 2.447;
+  /// rejected; 0 (the default) disables it. 2.447 = sqrt(5.991) would keep everything ORB-SLAM2's
+  /// chi^2 gate keeps around the dominant residual (measured: it lets ~2x more dynamics through).
+  double keep_below = 0.0;
 
   /// The paper's screen taken literally: raw pixel magnitude and raw angle, independent
   /// histograms of 10 equal-width bins over [min, max], two-sided, no centering, threshold
@@ -88,7 +90,7 @@ struct HbosScreen {
   [[nodiscard]] static HbosScreen paper() {
     HbosScreen s;
     s.residuals.whiten = false;
-    s.residuals.center = false;
+    s.residuals.center = ResidualCenter::None;
     s.magnitude = FeatureSpec{};
     s.magnitude.binning.method = BinningMethod::EqualWidth;
     s.magnitude.binning.rule = BinCountRule::Fixed;
@@ -125,12 +127,13 @@ struct QuantileGate {
 
 /// Robust z-score gate on the whitened magnitude: median + k * 1.4826 * MAD.
 struct MadGate {
-  double k = 3.0;       ///< > 0
-  bool whiten = true;   ///< use |r|/sigma (true) or |r| [px]
+  double k = 3.0;      ///< > 0
+  bool whiten = true;  ///< use |r|/sigma (true) or |r| [px]
 };
 
 /// Any screening strategy; switching is one assignment.
-using ScreenStrategy = std::variant<HbosScreen, FixedPixelGate, ChiSquareGate, QuantileGate, MadGate>;
+using ScreenStrategy =
+    std::variant<HbosScreen, FixedPixelGate, ChiSquareGate, QuantileGate, MadGate>;
 
 /// What a screen does with matches flagged `on_dynamic_mask`.
 enum class FlaggedPolicy {
@@ -167,8 +170,8 @@ inline void validate(const HbosScreen& s) {
   std::visit([](const auto& r) { validate(r); }, s.threshold);
 }
 inline void validate(const FixedPixelGate& g) {
-  require(g.max_px > 0.0 && std::isfinite(g.max_px), "FixedPixelGate max_px must be finite and > 0, got ",
-          g.max_px);
+  require(g.max_px > 0.0 && std::isfinite(g.max_px),
+          "FixedPixelGate max_px must be finite and > 0, got ", g.max_px);
 }
 inline void validate(const ChiSquareGate& g) {
   require(g.chi2_mono > 0.0 && std::isfinite(g.chi2_mono),

@@ -99,9 +99,16 @@ void require_finite_scores(const Eigen::DenseBase<Derived>& scores) {
   }
 }
 
+/// numpy's `_lerp(a, b, t)`: a + (b - a) t, evaluated from the upper end, b - (b - a)(1 - t), when
+/// t >= 0.5 (so t = 1 gives b exactly).
+[[nodiscard]] inline double numpy_lerp(double a, double b, double t) {
+  const double diff = b - a;
+  return t >= 0.5 ? b - mul_rounded(diff, 1.0 - t) : a + mul_rounded(diff, t);
+}
+
 /// numpy.percentile(a, 100*q, method="linear") on `values` (reordered in place), bit-identical to
-/// numpy: v = (n-1) q, i = floor(v), g = v - i, then numpy's `_lerp`, which evaluates from the
-/// upper end when g >= 0.5.
+/// numpy: v = (n-1) q, i = floor(v), g = v - i, then numpy's `_lerp` of the i-th and (i+1)-th
+/// smallest values.
 template <class Scalar>
 Scalar numpy_percentile_linear(Scalar* first, Scalar* last, double q) {
   const auto n = static_cast<std::size_t>(last - first);
@@ -112,10 +119,8 @@ Scalar numpy_percentile_linear(Scalar* first, Scalar* last, double q) {
   const Scalar lo = first[i];
   const Scalar hi = *std::min_element(first + static_cast<std::ptrdiff_t>(i) + 1, last);
   const double g = v - static_cast<double>(i);
-  const double diff = static_cast<double>(hi) - static_cast<double>(lo);
-  const double value = g >= 0.5 ? static_cast<double>(hi) - mul_rounded(diff, 1.0 - g)
-                                : static_cast<double>(lo) + mul_rounded(diff, g);
-  return static_cast<Scalar>(value);
+  return static_cast<Scalar>(
+      numpy_lerp(static_cast<double>(lo), static_cast<double>(hi), g));
 }
 
 /// Median of [first, last) (mean of the two middle values for an even count), reordering in place.

@@ -1,0 +1,114 @@
+#pragma once
+/// \file
+/// A strict, fast reader for numeric CSV files (rows = samples), as the command-line tools need.
+///
+/// Accepted format:
+/// - Cells separated by one delimiter character (default `,`); lines end in `\n` or `\r\n`; the
+///   last line may or may not end in a line break; blank lines at the very end are ignored.
+///   A UTF-8 byte-order mark at the start is skipped.
+/// - An optional header line. In `HeaderMode::Auto` the first line is a header when at least one
+///   of its cells is not a number; a header made only of numbers (`0,1,2`) must be requested
+///   with `HeaderMode::Present`.
+/// - Spaces and tabs around a cell are ignored (tabs only when the delimiter is not a tab). Any
+/// cell may be double-quoted (RFC 4180, `""`
+///   for a quote inside); a quoted cell may not span lines.
+/// - Data cells are decimal floating-point numbers as `std::from_chars` reads them (`1`, `-2.5`,
+///   `3e-7`, `.5`; a leading `+` is accepted too). Values too small for a double read as 0 or a
+///   subnormal, as strtod does.
+///
+/// Rejected, with the file, line and column of the offending cell (`data.csv:7:13: ...`): an
+/// empty input, a header without data rows, a row with more or fewer cells than the first line,
+/// an empty cell, a cell that is not a number, NaN or infinity, a number beyond the range of a
+/// double, a blank line between rows, an unterminated quote. Columns count bytes from 1, as
+/// compilers do, and point at the start of the cell.
+///
+/// An optional label column (0/1 ground truth, 1 = outlier) is split off the features, so the
+/// feature matrix holds only what the model should see.
+
+#include <Eigen/Core>
+#include <cstddef>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace hbos::cli {
+
+/// Whether the first line names the columns.
+enum class HeaderMode {
+  Auto,     ///< a header when at least one cell of the first line is not a number
+  Present,  ///< the first line is a header
+  Absent    ///< every line is data
+};
+
+/// How to read a CSV file.
+struct CsvOptions {
+  HeaderMode header = HeaderMode::Auto;  ///< header detection
+  char delimiter = ',';                  ///< cell separator; not `"`, a space, a line break or NUL
+  /// The column holding 0/1 ground-truth labels (1 = outlier), removed from the features: a
+  /// column name, a 0-based index, or `last`. Empty: no label column.
+  std::string label_column{};
+};
+
+/// A numeric table read from CSV.
+struct CsvTable {
+  /// Rows = samples, columns = features (the label column removed), column-major.
+  Eigen::MatrixXd features;
+  /// Names of every column of the file, in file order (`x<j>` where the file has no header or
+  /// an empty header cell, j counting from 0).
+  std::vector<std::string> column_names;
+  /// For each column of `features`, its index among `column_names`.
+  std::vector<std::size_t> feature_columns;
+  /// Index of the label column among `column_names`, if one was requested.
+  std::optional<std::size_t> label_column;
+  /// The labels (0 or 1, 1 = outlier), one per row; empty without a label column.
+  Eigen::VectorXi labels;
+  /// The line each row was read from (1-based), for messages about rows.
+  std::vector<std::size_t> row_lines;
+  /// Whether the first line was taken as a header.
+  bool has_header = false;
+  /// Auto mode only: cells of the header line that look like numbers (a hint that the first line
+  /// may be a corrupt data row rather than a header).
+  std::vector<std::size_t> numeric_header_cells;
+
+  [[nodiscard]] Eigen::Index rows() const { return features.rows(); }
+  /// Name of feature j (a column of `features`).
+  [[nodiscard]] const std::string& feature_name(Eigen::Index j) const {
+    return column_names[feature_columns[static_cast<std::size_t>(j)]];
+  }
+};
+
+/// A malformed input: where it is and what is wrong. `what()` reads `source:line:column: message`
+/// (or `source: message` when no position applies, e.g. a file that cannot be opened).
+class CsvError : public std::runtime_error {
+ public:
+  CsvError(const std::string& source, std::size_t line, std::size_t column,
+           const std::string& message);
+
+  [[nodiscard]] const std::string& source() const { return source_; }
+  /// 1-based line, 0 when no position applies.
+  [[nodiscard]] std::size_t line() const { return line_; }
+  /// 1-based byte column within the line, 0 when no position applies.
+  [[nodiscard]] std::size_t column() const { return column_; }
+  /// The message without the position prefix.
+  [[nodiscard]] const std::string& message() const { return message_; }
+
+ private:
+  std::string source_;
+  std::size_t line_;
+  std::size_t column_;
+  std::string message_;
+};
+
+/// Parses CSV text. `source` names the input in error messages.
+/// \throws CsvError on malformed input; std::invalid_argument when `options.label_column` names
+///         no column or `options.delimiter` is unusable.
+[[nodiscard]] CsvTable parse_csv(std::string_view text, const std::string& source,
+                                 const CsvOptions& options = {});
+
+/// Reads and parses a file; `-` reads standard input (named `<stdin>` in messages).
+/// \throws as parse_csv, and CsvError (without position) when the file cannot be read.
+[[nodiscard]] CsvTable read_csv(const std::string& path, const CsvOptions& options = {});
+
+}  // namespace hbos::cli

@@ -1,0 +1,124 @@
+#pragma once
+/// \file
+/// The one configuration of the mini-SLAM front end: plain defaulted fields, grouped by stage in
+/// the order the tracker runs them. Each stage is constructed with its own group only.
+
+#include <Eigen/Core>
+
+#include <string>
+
+namespace hbos::slam {
+
+/// Where the frames come from (a TUM RGB-D folder) and how they are paired.
+struct DatasetConfig {
+  std::string path;  ///< folder with rgb.txt, depth.txt and optionally groundtruth.txt
+  /// A preset (`tum1`, `tum3`) or a `.yaml`/`.yml`/`.json` file with fx, fy, cx, cy [, k1, k2,
+  /// p1, p2, k3, depth_factor] (ORB-SLAM2's `Camera.fx` spelling works too).
+  std::string camera = "tum1";
+  double max_association_difference = 0.02;  ///< [s] rgb/depth pairs need |dt| below this
+  int max_frames = 0;                         ///< use only the first N frames; 0 = all
+};
+
+/// The labelled dynamic scenario: a real person cut-out composited into every frame.
+struct ScenarioConfig {
+  bool add_person = false;  ///< composite the person (the "dynamic" scenario)
+  std::string person_dir;   ///< folder with rgb.png, mask.png, depth.png of the cut-out
+  double depth_m = 0.7;     ///< [m] median depth the person is placed at
+  double start_x_px = 40.0;          ///< [px] left edge of the cut-out in the first frame
+  double speed_px_per_frame = 5.5;   ///< [px/frame] sideways motion in the image, + = right
+};
+
+/// Which dynamic-object mask the feature extractor avoids.
+enum class MaskSource {
+  kNone,      ///< no mask: every pixel may give features
+  kExact,     ///< the composited person's own mask (an oracle segmentation)
+  kDegraded,  ///< the exact mask eroded, its lower body removed, missing every N-th frame
+  kDetector,  ///< Yolo-Fastest body boxes, filled as rectangles
+};
+
+struct MaskConfig {
+  MaskSource source = MaskSource::kNone;
+  int degraded_erosion_px = 6;             ///< [px] erosion radius of the degraded mask
+  double degraded_unmasked_lower = 0.4;    ///< share of the person's height left unmasked at the bottom
+  int degraded_missing_every = 5;          ///< frames 4, 9, 14, ... have no mask at all; 0 = never
+  std::string detector_dir;                ///< folder with yolo-fastest-1.1_body.{cfg,weights}
+  float detector_confidence = 0.5f;        ///< objectness x class score to accept a box
+  float detector_nms = 0.45f;              ///< IoU of non-maximum suppression
+  int detector_input_px = 320;             ///< square network input size (the model's own)
+};
+
+/// ORB as ORB-SLAM2 configures it (TUM yaml files).
+struct ExtractionConfig {
+  int features = 1000;
+  float scale_factor = 1.2f;
+  int levels = 8;
+  int fast_threshold = 20;      ///< FAST threshold tried first
+  int min_fast_threshold = 7;   ///< retried with this when the first gives too few corners
+  double min_depth_m = 0.1;     ///< [m] depth below this counts as invalid
+  double max_depth_m = 8.0;     ///< [m] depth above this counts as invalid (Kinect noise)
+};
+
+/// Frame-to-frame descriptor matching.
+struct MatchingConfig {
+  int max_hamming = 50;      ///< ORB-SLAM2's TH_LOW: descriptors further apart never match
+  bool cross_check = true;   ///< keep only mutual nearest neighbours
+  double ratio = 0.0;        ///< Lowe ratio best/second (e.g. 0.8); 0 = off
+};
+
+/// How the rough pose (the one the residuals are measured under) is found.
+enum class RoughPoseMethod {
+  kRansac,            ///< cv::solvePnPRansac on the matches (which avoid the mask)
+  kConstantVelocity,  ///< the previous frame-to-frame motion repeated
+};
+
+struct RoughPoseConfig {
+  RoughPoseMethod method = RoughPoseMethod::kRansac;
+  double ransac_threshold_px = 2.0;  ///< [px] inlier threshold of the minimal-set consensus
+  int ransac_iterations = 300;
+  double ransac_confidence = 0.999;
+  int min_inliers = 12;  ///< fewer RANSAC inliers: fall back to constant velocity
+};
+
+/// The residual screen (hbos's reprojection screen or a baseline).
+struct ScreenStageConfig {
+  /// default | paper | chi2 | fixed | quantile | mad | none
+  std::string strategy = "default";
+  int rounds = 4;             ///< screen -> refine -> re-screen rounds (ORB-SLAM2 runs 4)
+  Eigen::Index min_inliers = 10;  ///< stop re-fitting below this many survivors
+};
+
+/// Gauss-Newton pose refinement on the survivors (hbos/pose_refinement.hpp).
+struct RefinementConfig {
+  int max_iterations = 10;     ///< per call (ORB-SLAM2: 10 per round)
+  double huber_delta = 2.447;  ///< [px/sigma] sqrt(5.991), ORB-SLAM2's Huber width
+};
+
+/// What is written, and where.
+struct OutputConfig {
+  std::string dir = "out/slam";
+  int figure_frame = -1;  ///< frame drawn in the figures; -1 = the one with most person matches
+  bool progress = true;   ///< a progress line per frame on stderr
+};
+
+/// Everything the front end needs, one group per stage.
+struct Config {
+  DatasetConfig dataset;
+  ScenarioConfig scenario;
+  MaskConfig mask;
+  ExtractionConfig extraction;
+  MatchingConfig matching;
+  RoughPoseConfig rough_pose;
+  ScreenStageConfig screen;
+  RefinementConfig refinement;
+  OutputConfig output;
+};
+
+/// `none`, `exact`, `degraded`, `detector`.
+[[nodiscard]] const char* to_string(MaskSource source);
+/// Inverse of to_string; throws hbos::InvalidArgument naming the value and the choices.
+[[nodiscard]] MaskSource parse_mask_source(const std::string& name);
+/// `ransac`, `constant-velocity`.
+[[nodiscard]] const char* to_string(RoughPoseMethod method);
+[[nodiscard]] RoughPoseMethod parse_rough_pose_method(const std::string& name);
+
+}  // namespace hbos::slam

@@ -1,0 +1,62 @@
+#pragma once
+/// \file
+/// A TUM RGB-D sequence on disk: `rgb.txt` and `depth.txt` (`timestamp filename` per line,
+/// `#` comments), associated by nearest stamp as the benchmark's associate.py does, and the
+/// optional `groundtruth.txt`. Every error names the file and line.
+
+#include "eval/trajectory.hpp"
+
+#include <opencv2/core.hpp>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace hbos::slam {
+
+/// One line of an rgb.txt / depth.txt list.
+struct ListedImage {
+  double stamp = 0.0;  ///< [s]
+  std::string path;    ///< as written in the list, relative to the sequence folder
+  int line = 0;        ///< line number in the list file, for messages
+};
+
+/// Reads a TUM image list. Throws hbos::InvalidArgument naming `file:line` on a line that is not
+/// `timestamp filename`, a stamp that is not a finite number or does not increase, and when the
+/// file cannot be opened or lists no image.
+[[nodiscard]] std::vector<ListedImage> read_image_list(const std::string& path);
+
+/// One RGB-D frame of a sequence: a colour image and the depth image nearest in time.
+struct FrameRecord {
+  ListedImage rgb;
+  ListedImage depth;
+};
+
+struct RgbdSequence {
+  std::string root;                  ///< the sequence folder
+  std::vector<FrameRecord> frames;   ///< in time order
+  Eigen::Index unpaired_rgb = 0;     ///< colour images without a depth image within the limit
+  std::optional<Trajectory> groundtruth;  ///< groundtruth.txt, when the folder has one
+
+  [[nodiscard]] Eigen::Index size() const { return static_cast<Eigen::Index>(frames.size()); }
+  [[nodiscard]] std::vector<double> rgb_stamps() const;
+};
+
+/// Loads the lists (and ground truth, if present) of the sequence in `folder`. Colour images are
+/// paired with depth images one-to-one, nearest stamps first, within `max_difference` seconds.
+/// Throws hbos::InvalidArgument when a list is missing or malformed or no pair is found.
+[[nodiscard]] RgbdSequence load_tum_sequence(const std::string& folder,
+                                             double max_difference = 0.02);
+
+/// The images of one frame: colour 8-bit BGR, depth in metres (CV_32F, 0 = no measurement).
+struct RgbdImages {
+  cv::Mat bgr;
+  cv::Mat depth_m;
+};
+
+/// Reads frame `index`. Throws hbos::InvalidArgument naming the image (and the list line) when it
+/// cannot be read, is not 8-bit colour / 16-bit depth, or the two sizes differ.
+[[nodiscard]] RgbdImages read_frame_images(const RgbdSequence& sequence, Eigen::Index index,
+                                           double depth_factor);
+
+}  // namespace hbos::slam

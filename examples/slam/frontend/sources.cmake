@@ -1,0 +1,32 @@
+# The mini-SLAM front end (hbos-slam). Included from examples/slam/CMakeLists.txt after the
+# static library hbos_slam is defined: the front end's stages join that library (so the tests in
+# tests/slam reach them), and its commands link it.
+include_guard(GLOBAL)
+if(NOT TARGET hbos_slam)
+  return()
+endif()
+
+set(_hbos_frontend_dir ${CMAKE_CURRENT_LIST_DIR})
+target_sources(hbos_slam PRIVATE
+  ${_hbos_frontend_dir}/camera.cpp
+  ${_hbos_frontend_dir}/config.cpp
+  ${_hbos_frontend_dir}/dataset.cpp
+  ${_hbos_frontend_dir}/frame_matching.cpp
+  ${_hbos_frontend_dir}/frame_source.cpp
+  ${_hbos_frontend_dir}/orb_extraction.cpp
+  ${_hbos_frontend_dir}/person_detector.cpp
+  ${_hbos_frontend_dir}/person_mask.cpp
+  ${_hbos_frontend_dir}/person_scenario.cpp
+  ${_hbos_frontend_dir}/pose_refiner.cpp
+  ${_hbos_frontend_dir}/residual_screen.cpp
+  ${_hbos_frontend_dir}/rough_pose.cpp
+  ${_hbos_frontend_dir}/tracker.cpp)
+
+# The embedded data (examples/slam/data): the default input of hbos-slam and the tests' input.
+get_filename_component(_hbos_slam_data_dir ${_hbos_frontend_dir}/../data ABSOLUTE)
+target_compile_definitions(hbos_slam PUBLIC HBOS_SLAM_DATA_DIR="${_hbos_slam_data_dir}")
+
+# Regenerates examples/slam/data from ../shared (see the SOURCE.md files there).
+add_executable(hbos-slam-prepare-data ${_hbos_frontend_dir}/prepare_data.cpp)
+target_link_libraries(hbos-slam-prepare-data PRIVATE hbos_slam)
+hbos_set_warnings(hbos-slam-prepare-data)

@@ -1,0 +1,103 @@
+#include "frontend/tracker.hpp"
+
+#include <hbos/residuals.hpp>
+
+#include <chrono>
+#include <cstdint>
+#include <utility>
+
+namespace hbos::slam {
+
+Tracker::Tracker(const Config& config, const CameraModel& camera)
+    : extractor_(config.extraction, camera),
+      matcher_(config.matching),
+      rough_pose_(config.rough_pose, camera.pinhole()),
+      screen_(config.screen),
+      refiner_(config.refinement, camera.pinhole()),
+      scale_factor_(config.extraction.scale_factor),
+      min_matches_(static_cast<int>(config.screen.min_inliers)) {}
+
+TrackResult Tracker::track(const Frame& frame) {
+  TrackResult out;
+  FrameStats& stats = out.stats;
+  stats.index = frame.index;
+  stats.stamp = frame.stamp;
+
+  // 1. ORB features outside the dynamic-object mask.
+  Features current = extractor_.extract(frame);
+  stats.features = static_cast<int>(current.size());
+  if (!previous_) {
+    previous_ = std::move(current);
+    stats.tracked = true;
+    out.T_world_camera = T_world_previous_;
+    return out;
+  }
+  const Features& previous = *previous_;
+
+  // 2. Match against the previous frame's features that have depth.
+  const std::vector<FeatureMatch> pairs = matcher_.match(previous, current);
+
+  // 3. Each match: the previous keypoint back-projected to 3D, the current keypoint observing it.
+  const hbos::PinholeCamerad camera = refiner_.camera();
+  std::vector<Eigen::Vector3d> points_prev;
+  std::vector<Eigen::Vector2d> observed;
+  std::vector<double> sigma;
+  for (const FeatureMatch& m : pairs) {
+    const auto p = static_cast<std::size_t>(m.previous), c = static_cast<std::size_t>(m.current);
+    points_prev.push_back(camera.back_project(previous.undistorted[p], previous.depth_m[p]));
+    observed.push_back(current.undistorted[c]);
+    // ORB-SLAM's noise model: a keypoint at octave o is 1.2^o times less precise.
+    sigma.push_back(hbos::sigma_from_octave(current.keypoints[c].octave, scale_factor_));
+    out.matches.push_back({{current.keypoints[c].pt.x, current.keypoints[c].pt.y},
+                           {previous.keypoints[p].pt.x, previous.keypoints[p].pt.y},
+                           previous.on_person[p] != 0 || current.on_person[c] != 0,
+                           false});
+  }
+  stats.matches = static_cast<int>(pairs.size());
+
+  Eigen::Isometry3d T_cur_prev = velocity_;
+  stats.tracked = stats.matches >= min_matches_;
+  if (stats.tracked) {
+    // 4. Rough pose from the matches (PnP RANSAC; constant velocity as fallback).
+    const RoughPose rough = rough_pose_.estimate(points_prev, observed, velocity_);
+    T_cur_prev = rough.T_cur_prev;
+    stats.rough_from_ransac = rough.from_ransac;
+    stats.ransac_inliers = rough.ransac_inliers;
+
+    // 5. Screen the reprojection residuals under the rough pose; between rounds the pose is
+    //    refined on the survivors and the residuals measured again.
+    out.screen = screen_.screen(points_prev, observed, sigma, T_cur_prev, refiner_);
+
+    // 6. Refine the pose on the final survivors.
+    Eigen::Index survivors = 0;
+    for (const std::uint8_t k : out.screen.inlier) survivors += k;
+    if (survivors >= min_matches_) {
+      const auto start = std::chrono::steady_clock::now();
+      refiner_.refine(points_prev, observed, sigma, out.screen.inlier, T_cur_prev);
+      out.screen.refine_us +=
+          std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
+    }
+  }
+
+  // 7. Chain the motion onto the trajectory and keep it as the next constant-velocity guess.
+  T_world_previous_ = T_world_previous_ * T_cur_prev.inverse();
+  velocity_ = T_cur_prev;
+  out.T_world_camera = T_world_previous_;
+  previous_ = std::move(current);
+
+  // 8. Statistics against the person label.
+  stats.threshold = out.screen.threshold;
+  stats.screen_us = out.screen.screen_us;
+  stats.refine_us = out.screen.refine_us;
+  for (std::size_t i = 0; i < out.matches.size(); ++i) {
+    MatchRecord& m = out.matches[i];
+    m.kept = i < out.screen.inlier.size() && out.screen.inlier[i] != 0;
+    stats.person_matches += m.on_person ? 1 : 0;
+    stats.survivors += m.kept ? 1 : 0;
+    stats.person_survivors += (m.on_person && m.kept) ? 1 : 0;
+    stats.static_dropped += (!m.on_person && !m.kept) ? 1 : 0;
+  }
+  return out;
+}
+
+}  // namespace hbos::slam

@@ -1,0 +1,82 @@
+#pragma once
+/// \file
+/// The front end: frame-to-frame tracking with a reprojection-residual screen, as the HBOS
+/// dynamic-SLAM method runs it inside ORB-SLAM2's tracking. `Tracker::track` is the algorithm.
+
+#include "frontend/camera.hpp"
+#include "frontend/config.hpp"
+#include "frontend/frame.hpp"
+#include "frontend/frame_matching.hpp"
+#include "frontend/orb_extraction.hpp"
+#include "frontend/pose_refiner.hpp"
+#include "frontend/residual_screen.hpp"
+#include "frontend/rough_pose.hpp"
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include <optional>
+#include <vector>
+
+namespace hbos::slam {
+
+/// Per-frame statistics. "Person" matches are those with either keypoint on the composited
+/// person (the label); all others count as static.
+struct FrameStats {
+  int index = 0;
+  double stamp = 0.0;             ///< [s]
+  int features = 0;               ///< ORB keypoints extracted (outside the mask)
+  int matches = 0;                ///< matches screened
+  int person_matches = 0;         ///< of them, labelled dynamic
+  int survivors = 0;              ///< kept by the screen
+  int person_survivors = 0;       ///< labelled dynamic and kept
+  int static_dropped = 0;         ///< static and rejected
+  bool rough_from_ransac = false;  ///< false: constant velocity (by choice or fallback)
+  int ransac_inliers = 0;
+  bool tracked = false;           ///< enough matches to estimate a pose (else constant velocity)
+  double threshold = 0.0;         ///< the screen's cut on its score (NaN for none)
+  double screen_us = 0.0;         ///< [us] screening time, refinement excluded
+  double refine_us = 0.0;         ///< [us] pose refinement time (between rounds and final)
+};
+
+/// One screened match, for figures.
+struct MatchRecord {
+  Eigen::Vector2d current_px;   ///< keypoint in the current (distorted) image
+  Eigen::Vector2d previous_px;  ///< its match in the previous image
+  bool on_person = false;
+  bool kept = false;
+};
+
+struct TrackResult {
+  Eigen::Isometry3d T_world_camera = Eigen::Isometry3d::Identity();
+  FrameStats stats;
+  ScreenOutcome screen;               ///< empty on the first frame
+  std::vector<MatchRecord> matches;   ///< same order as screen's vectors
+};
+
+/// Not thread-safe; one per sequence.
+class Tracker {
+ public:
+  /// Builds every stage from its own group of `config`; throws hbos::InvalidArgument on invalid
+  /// settings.
+  Tracker(const Config& config, const CameraModel& camera);
+
+  /// Tracks one frame (frames in time order) and returns its pose in the first frame's
+  /// coordinates (the first frame is the identity).
+  TrackResult track(const Frame& frame);
+
+ private:
+  OrbExtractor extractor_;
+  FrameMatcher matcher_;
+  RoughPoseEstimator rough_pose_;
+  ResidualScreen screen_;
+  PoseRefiner refiner_;
+  float scale_factor_;
+  int min_matches_;
+
+  std::optional<Features> previous_;
+  Eigen::Isometry3d T_world_previous_ = Eigen::Isometry3d::Identity();
+  Eigen::Isometry3d velocity_ = Eigen::Isometry3d::Identity();  ///< last T_cur_prev
+};
+
+}  // namespace hbos::slam

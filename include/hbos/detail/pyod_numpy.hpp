@@ -1,0 +1,389 @@
+#pragma once
+/// \file
+/// numpy's arithmetic where PyOD's HBOS depends on it, reproduced bit for bit: the bin edges of
+/// `numpy.histogram` (which come from `numpy.linspace`), the bin a value is counted in and the
+/// bin `numpy.digitize(right=True)` finds for it, numpy's pairwise summation and percentile. Plus
+/// the bucketed column that makes PyOD's `n_bins="auto"` search O(n) expected, O(n log n) worst.
+///
+/// Internal to hbos/pyod.hpp; the semantics are written down in docs/pyod_compat.md and in
+/// tests/data/hbos_pyod/README.md.
+
+#include <Eigen/Core>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <utility>
+#include <vector>
+
+#include "hbos/threshold.hpp"  // detail::mul_rounded
+
+namespace hbos::detail {
+
+/// numpy's `_get_outer_edges`: the histogram range of a column, widened by 0.5 on each side
+/// when the column is constant.
+struct OuterEdges {
+  double lo = 0.0;
+  double hi = 0.0;
+};
+
+[[nodiscard]] inline OuterEdges numpy_outer_edges(double min_value, double max_value) {
+  if (min_value == max_value) return {min_value - 0.5, max_value + 0.5};
+  return {min_value, max_value};
+}
+
+/// `numpy.linspace(lo, hi, bins + 1)`, as `numpy.histogram` calls it: e_k = k * step + lo with the
+/// product rounded before the addition (numpy multiplies the whole `arange` in place, then adds),
+/// and the last edge set to `hi` exactly. A zero step (a range of denormals) takes numpy's
+/// `(k / bins) * delta` branch.
+class LinspaceEdges {
+ public:
+  LinspaceEdges(const OuterEdges& range, Eigen::Index bins)
+      : range_(range),
+        bins_(bins),
+        div_(static_cast<double>(bins)),
+        delta_(range.hi - range.lo),
+        step_(delta_ / div_) {}
+
+  /// e_k, k in [0, bins].
+  [[nodiscard]] double operator()(Eigen::Index k) const {
+    if (k == bins_) return range_.hi;
+    if (step_ == 0.0) return mul_rounded(static_cast<double>(k) / div_, delta_) + range_.lo;
+    return mul_rounded(static_cast<double>(k), step_) + range_.lo;
+  }
+
+ private:
+  OuterEdges range_;
+  Eigen::Index bins_;
+  double div_;
+  double delta_;
+  double step_;
+};
+
+/// All bins + 1 edges into `edges`.
+inline void numpy_histogram_edges(const OuterEdges& range, Eigen::Index bins, double* edges) {
+  const LinspaceEdges edge(range, bins);
+  for (Eigen::Index k = 0; k <= bins; ++k) edges[k] = edge(k);
+}
+
+/// A first guess of a value's bin from its position in the range, clamped to [0, top]. Only a
+/// guess: the callers correct it against the actual edges, so the result never depends on the
+/// rounding here (NaN and infinities land on a bound).
+[[nodiscard]] inline Eigen::Index bin_guess(double x, double lo, double norm, Eigen::Index top) {
+  const double f = (x - lo) * norm;
+  if (!(f > 0.0)) return 0;
+  if (f >= static_cast<double>(top)) return top;
+  return static_cast<Eigen::Index>(f);
+}
+
+/// The bin numpy.histogram counts x in: e_c <= x < e_{c+1}, the last bin closed, for x in
+/// [e_0, e_B] and non-decreasing edges. `c` is a guess in [0, B-1], walked to the exact bin.
+/// (numpy computes floor((x - lo) * bins / (hi - lo)) and corrects it by one bin against the edges;
+/// both agree unless bins are narrower than a few ULPs of the values, which pyod.hpp rejects.)
+[[nodiscard]] inline Eigen::Index count_bin(double x, const double* edges, Eigen::Index bins,
+                                           Eigen::Index c) {
+  while (c > 0 && x < edges[c]) --c;
+  while (c < bins - 1 && edges[c + 1] <= x) ++c;
+  return c;
+}
+
+/// `numpy.digitize(x, edges, right=True)` = #{k : e_k < x} in [0, B+1] for non-decreasing edges
+/// (numpy's searchsorted, side="left"). `b` is a guess in [0, B+1], walked to the exact answer.
+[[nodiscard]] inline Eigen::Index digitize_right(double x, const double* edges, Eigen::Index bins,
+                                                Eigen::Index b) {
+  while (b > 0 && !(edges[b - 1] < x)) --b;
+  while (b <= bins && edges[b] < x) ++b;
+  return b;
+}
+
+/// numpy's pairwise summation of n doubles spaced `stride` apart (`pairwise_sum_DOUBLE`):
+/// a plain loop below 8 terms, eight interleaved partial sums up to 128, halves above that (the
+/// split rounded down to a multiple of 8). np.sum(axis=...) adds the result to its identity 0,
+/// which changes nothing.
+[[nodiscard]] inline double numpy_pairwise_sum(const double* a, Eigen::Index n,
+                                               Eigen::Index stride) {
+  if (n < 8) {
+    double res = 0.0;
+    for (Eigen::Index i = 0; i < n; ++i) res += a[i * stride];
+    return res;
+  }
+  if (n <= 128) {
+    double r[8];
+    for (Eigen::Index k = 0; k < 8; ++k) r[k] = a[k * stride];
+    Eigen::Index i = 8;
+    for (; i < n - (n % 8); i += 8) {
+      for (Eigen::Index k = 0; k < 8; ++k) r[k] += a[(i + k) * stride];
+    }
+    double res = ((r[0] + r[1]) + (r[2] + r[3])) + ((r[4] + r[5]) + (r[6] + r[7]));
+    for (; i < n; ++i) res += a[i * stride];
+    return res;
+  }
+  Eigen::Index n2 = n / 2;
+  n2 -= n2 % 8;
+  return numpy_pairwise_sum(a, n2, stride) + numpy_pairwise_sum(a + n2 * stride, n - n2, stride);
+}
+
+// ---- exact order statistics without sorting ----------------------------------------------------
+
+/// Counts #{x < e} for many e over one column, exactly, in O(1) expected time per query.
+///
+/// The values are bucketed (not sorted) into equal cells over [lo, hi], 4 to 8 values per cell.
+/// cell(v) is monotone in v, so every value in a cell below cell(e) is < e and every value in a
+/// cell above is > e: the answer is the number of values in the cells below plus a count inside
+/// cell(e), by a scan when the cell is small and by binary search in it (sorted once) when it is
+/// not. So exactness rests on monotonicity alone, not on how cell() rounds, and heavily tied or
+/// heavy-tailed data degrade to O(n log n), never worse.
+///
+/// Bucketing is two counting-sort passes (256 coarse cells, then the fine cells inside each
+/// coarse one) so that every scatter stays within cache; only values move, cells are recomputed.
+template <class Scalar>
+class BucketedColumn {
+ public:
+  void reset(const Scalar* column, Eigen::Index stride, Eigen::Index n, double lo, double hi) {
+    // Fine cells per coarse cell: a power of two, so that coarse = fine >> shift.
+    int shift = 0;
+    while ((Eigen::Index{4} * kCoarse << (shift + 1)) <= n) ++shift;
+    const Eigen::Index per_coarse = Eigen::Index{1} << shift;
+    shift_ = shift;
+    lo_ = lo;
+    cells_ = kCoarse * per_coarse;
+    scale_ = static_cast<double>(cells_) / (hi - lo);
+    const auto size = static_cast<std::size_t>(n);
+
+    // Pass 1: the coarse histogram.
+    coarse_start_.assign(static_cast<std::size_t>(kCoarse + 1), 0);
+    for (Eigen::Index i = 0; i < n; ++i) {
+      ++coarse_start_[static_cast<std::size_t>((cell(static_cast<double>(column[i * stride])) >> shift) + 1)];
+    }
+    for (std::size_t k = 1; k < coarse_start_.size(); ++k) coarse_start_[k] += coarse_start_[k - 1];
+
+    // Pass 2: scatter the values into their coarse cells.
+    cursor_.assign(coarse_start_.begin(), coarse_start_.end() - 1);
+    staged_.resize(size);
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const Scalar x = column[i * stride];
+      staged_[static_cast<std::size_t>(cursor_[static_cast<std::size_t>(cell(static_cast<double>(x)) >> shift)]++)] = x;
+    }
+
+    // Pass 3: inside each coarse cell, a counting sort by fine cell.
+    start_.assign(static_cast<std::size_t>(cells_ + 1), 0);
+    values_.resize(size);
+    for (Eigen::Index k = 0; k < kCoarse; ++k) {
+      const Eigen::Index first = coarse_start_[static_cast<std::size_t>(k)];
+      const Eigen::Index last = coarse_start_[static_cast<std::size_t>(k + 1)];
+      const Eigen::Index base = k * per_coarse;
+      Eigen::Index* start = start_.data() + base;  // this coarse cell's fine starts
+      for (Eigen::Index i = first; i < last; ++i) {
+        ++start[cell(static_cast<double>(staged_[static_cast<std::size_t>(i)])) - base + 1];
+      }
+      start[0] = first;
+      for (Eigen::Index t = 1; t < per_coarse; ++t) start[t] += start[t - 1];
+      cursor_.assign(start, start + per_coarse);
+      for (Eigen::Index i = first; i < last; ++i) {
+        const Scalar x = staged_[static_cast<std::size_t>(i)];
+        const auto t = static_cast<std::size_t>(cell(static_cast<double>(x)) - base);
+        values_[static_cast<std::size_t>(cursor_[t]++)] = x;
+      }
+    }
+    start_[static_cast<std::size_t>(cells_)] = n;
+
+    for (std::size_t c = 0; c + 1 < start_.size(); ++c) {
+      if (start_[c + 1] - start_[c] > kScanLimit) {
+        std::sort(values_.begin() + start_[c], values_.begin() + start_[c + 1]);
+      }
+    }
+  }
+
+  static constexpr Eigen::Index kCoarse = 256;
+
+  /// The coarse cell of e, in [0, kCoarse); monotone in e. Queries grouped by coarse cell touch
+  /// one cache-sized slice of the column.
+  [[nodiscard]] Eigen::Index coarse_cell(double e) const { return cell(e) >> shift_; }
+
+  /// #{values < e}.
+  [[nodiscard]] Eigen::Index count_below(double e) const {
+    const auto c = static_cast<std::size_t>(cell(e));
+    const Eigen::Index first = start_[c];
+    const Eigen::Index last = start_[c + 1];
+    const Scalar* v = values_.data();
+    if (last - first <= kScanLimit) {
+      Eigen::Index below = first;
+      for (Eigen::Index i = first; i < last; ++i) below += static_cast<double>(v[i]) < e ? 1 : 0;
+      return below;
+    }
+    return static_cast<Eigen::Index>(
+        std::lower_bound(v + first, v + last, e,
+                         [](Scalar x, double edge) { return static_cast<double>(x) < edge; }) -
+        v);
+  }
+
+ private:
+  static constexpr Eigen::Index kScanLimit = 64;
+
+  [[nodiscard]] Eigen::Index cell(double v) const { return bin_guess(v, lo_, scale_, cells_ - 1); }
+
+  int shift_ = 0;
+  double lo_ = 0.0;
+  double scale_ = 0.0;
+  Eigen::Index cells_ = 1;
+  std::vector<Eigen::Index> start_;  // first position of each fine cell in values_, then n
+  std::vector<Eigen::Index> coarse_start_;
+  std::vector<Eigen::Index> cursor_;
+  std::vector<Scalar> staged_;  // values grouped by coarse cell
+  std::vector<Scalar> values_;  // grouped by fine cell; cells above kScanLimit sorted
+};
+
+/// The i-th and (i+1)-th smallest of n values (0-based, i + 1 < n), exactly, without reordering
+/// them. Large inputs: the ranks are bracketed by two values of a sorted sample, one pass counts
+/// what lies below the bracket and gathers what lies inside it, and only that slice is selected
+/// from. Small inputs, or a bracket that missed, fall back to std::nth_element on a copy.
+template <class Scalar>
+std::pair<Scalar, Scalar> select_adjacent(const Scalar* values, Eigen::Index n, Eigen::Index i,
+                                          std::vector<Scalar>& scratch) {
+  auto by_nth_element = [&](Scalar* first, Eigen::Index m, Eigen::Index k) {
+    std::nth_element(first, first + k, first + m);
+    return std::make_pair(first[k], *std::min_element(first + k + 1, first + m));
+  };
+  constexpr Eigen::Index kSample = 4096;
+  if (n >= 16 * kSample) {
+    std::vector<Scalar> sample(static_cast<std::size_t>(kSample));
+    const Eigen::Index stride = n / kSample;
+    for (Eigen::Index s = 0; s < kSample; ++s) sample[static_cast<std::size_t>(s)] = values[s * stride];
+    std::sort(sample.begin(), sample.end());
+    // +-4 standard deviations of the sample rank: a miss (and its fallback) is very rare.
+    const Eigen::Index centre = static_cast<Eigen::Index>(
+        static_cast<double>(i) / static_cast<double>(n) * static_cast<double>(kSample));
+    const Eigen::Index margin = 4 * 32 + 8;  // 4 * sqrt(kSample / 4) + slack
+    const bool open_below = centre - margin < 0;
+    const bool open_above = centre + margin >= kSample;
+    const Scalar low = open_below ? Scalar(0) : sample[static_cast<std::size_t>(centre - margin)];
+    const Scalar high = open_above ? Scalar(0) : sample[static_cast<std::size_t>(centre + margin)];
+    // The bracket holds ~2 * margin / kSample = 7 % of the values unless they are heavily tied;
+    // gather at most n / 4 of them (a branch-free write, kept only when inside).
+    const Eigen::Index capacity = n / 4;
+    scratch.resize(static_cast<std::size_t>(capacity + 1));
+    Eigen::Index below = 0;
+    Eigen::Index inside = 0;
+    for (Eigen::Index k = 0; k < n; ++k) {
+      const Scalar x = values[k];
+      const bool is_below = !open_below && x < low;
+      const bool is_inside = !is_below && (open_above || !(high < x));
+      scratch[static_cast<std::size_t>(std::min(inside, capacity))] = x;
+      below += is_below ? 1 : 0;
+      inside += is_inside ? 1 : 0;
+    }
+    if (inside <= capacity && below <= i && i + 1 < below + inside) {
+      return by_nth_element(scratch.data(), inside, i - below);
+    }
+  }
+  scratch.assign(values, values + n);
+  return by_nth_element(scratch.data(), n, i);
+}
+
+/// PyOD's threshold_: numpy.percentile(scores, 100 (1 - contamination)), method "linear",
+/// bit-identical to numpy (the same result as hbos::compute_threshold with Contamination, faster
+/// on large score vectors).
+template <class Scalar>
+[[nodiscard]] Scalar pyod_threshold(const Scalar* scores, Eigen::Index n, double contamination,
+                                    std::vector<Scalar>& scratch) {
+  const double q = (100.0 * (1.0 - contamination)) / 100.0;
+  const double v = static_cast<double>(n - 1) * q;
+  const auto i = static_cast<Eigen::Index>(std::floor(v));
+  if (i + 1 >= n) return *std::max_element(scores, scores + n);
+  const auto [lo, hi] = select_adjacent(scores, n, i, scratch);
+  return static_cast<Scalar>(
+      numpy_lerp(static_cast<double>(lo), static_cast<double>(hi), v - static_cast<double>(i)));
+}
+
+/// Reusable buffers for pyod_optimal_bins.
+template <class Scalar>
+struct AutoBinsScratch {
+  BucketedColumn<Scalar> column;
+  std::vector<Eigen::Index> below;  // #{x < e_k} of every interior edge of every candidate b
+  std::vector<Eigen::Index> next_k;
+  std::vector<double> next_edge;
+  std::vector<Eigen::Index> next_coarse;
+  std::vector<double> terms;
+};
+
+/// PyOD's `get_optimal_n_bins` (Birgé–Rozenblac as PyOD writes it) for one column:
+///
+///     L(b) = sum_{k<b} [ N_k ln(b N_k / n + 1) - (b - 1 + (ln b)^2.5) ],   b = 1 .. floor(sqrt(n)) - 1
+///
+/// with N_k the counts of numpy.histogram(x, b); returns the first argmax. The penalty sits inside
+/// the sum (so it is paid b times) and the `+ 1` is PyOD's epsilon. Each term is rounded as numpy
+/// rounds it (product, then difference) and the b terms are summed pairwise, as np.sum does.
+///
+/// Cost: the column is bucketed once (O(n)); every interior edge of every candidate, about n / 2
+/// of them, is then located in O(1) expected time, visiting the edges coarse cell by coarse cell
+/// (a merge of the candidates' sorted edge lists) so that the column is read once, in order.
+/// PyOD re-histograms the column for every b: O(n sqrt(n)).
+/// `min_value`/`max_value` are the column's extremes; requires n >= 4.
+template <class Scalar>
+[[nodiscard]] Eigen::Index pyod_optimal_bins(const Scalar* column, Eigen::Index stride,
+                                             Eigen::Index n, double min_value, double max_value,
+                                             AutoBinsScratch<Scalar>& scratch) {
+  const OuterEdges range = numpy_outer_edges(min_value, max_value);
+  BucketedColumn<Scalar>& sorted = scratch.column;
+  sorted.reset(column, stride, n, range.lo, range.hi);
+  // int(np.sqrt(n)): the sqrt of a double, truncated. Candidates are b = 1 .. last.
+  const Eigen::Index last = static_cast<Eigen::Index>(std::sqrt(static_cast<double>(n))) - 1;
+  // Interior edge k (1 <= k < b) of candidate b is stored at row(b) + k - 1.
+  auto row = [](Eigen::Index b) { return (b - 1) * (b - 2) / 2; };
+  scratch.below.resize(static_cast<std::size_t>(row(last + 1)));
+  scratch.next_k.assign(static_cast<std::size_t>(last + 1), 1);
+  scratch.next_edge.resize(static_cast<std::size_t>(last + 1));
+  scratch.next_coarse.resize(static_cast<std::size_t>(last + 1));
+  for (Eigen::Index b = 2; b <= last; ++b) {
+    const double e = LinspaceEdges(range, b)(1);
+    scratch.next_edge[static_cast<std::size_t>(b)] = e;
+    scratch.next_coarse[static_cast<std::size_t>(b)] = sorted.coarse_cell(e);
+  }
+  for (Eigen::Index cell = 0; cell < BucketedColumn<Scalar>::kCoarse; ++cell) {
+    for (Eigen::Index b = 2; b <= last; ++b) {
+      const auto ub = static_cast<std::size_t>(b);
+      Eigen::Index& k = scratch.next_k[ub];
+      if (k >= b || scratch.next_coarse[ub] > cell) continue;
+      const LinspaceEdges edge(range, b);
+      while (k < b && scratch.next_coarse[ub] <= cell) {
+        scratch.below[static_cast<std::size_t>(row(b) + k - 1)] =
+            sorted.count_below(scratch.next_edge[ub]);
+        if (++k < b) {
+          scratch.next_edge[ub] = edge(k);
+          scratch.next_coarse[ub] = sorted.coarse_cell(scratch.next_edge[ub]);
+        }
+      }
+    }
+  }
+
+  const double n_double = static_cast<double>(n);
+  Eigen::Index best_bins = 1;
+  double best = -std::numeric_limits<double>::infinity();
+  for (Eigen::Index b = 1; b <= last; ++b) {
+    scratch.terms.resize(static_cast<std::size_t>(b));
+    const double penalty =
+        static_cast<double>(b - 1) + std::pow(std::log(static_cast<double>(b)), 2.5);
+    Eigen::Index previous = 0;  // #{x < e_0}: e_0 is the minimum
+    for (Eigen::Index k = 0; k < b; ++k) {
+      // Bin k holds e_k <= x < e_{k+1}; the last bin is closed and ends at the maximum.
+      const Eigen::Index next =
+          k + 1 == b ? n
+                     : std::max(previous, scratch.below[static_cast<std::size_t>(row(b) + k)]);
+      const Eigen::Index count = next - previous;
+      previous = next;
+      // 0 * ln(0 / n + 1) is exactly 0, so the log can be skipped for empty bins.
+      const double weighted =
+          count == 0 ? 0.0
+                     : mul_rounded(static_cast<double>(count),
+                                   std::log(static_cast<double>(b * count) / n_double + 1.0));
+      scratch.terms[static_cast<std::size_t>(k)] = weighted - penalty;
+    }
+    const double likelihood = numpy_pairwise_sum(scratch.terms.data(), b, 1);
+    if (likelihood > best) {  // strict: np.argmax keeps the first maximum
+      best = likelihood;
+      best_bins = b;
+    }
+  }
+  return best_bins;
+}
+
+}  // namespace hbos::detail

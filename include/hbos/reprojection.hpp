@@ -1,0 +1,119 @@
+#pragma once
+/// \file
+/// Reprojection-residual screening in one include: the screen (screen.hpp), its strategies
+/// (screen_strategies.hpp), its inputs (residuals.hpp), and conveniences for callers that hold
+/// 3D map points, a pose and pinhole intrinsics rather than predicted pixels.
+///
+/// Where it goes in an ORB-SLAM2-style tracker: after the rough pose (motion model or reference
+/// keyframe), before Optimizer::PoseOptimization; see docs/screening.md for the snippet.
+///
+///     hbos::ReprojectionScreend screen;                // once; the recommended default
+///     hbos::Matchesd matches;                          // once; reused every frame
+///     ...per frame:
+///     matches.clear();
+///     for (each match i) matches.add(predicted_i, keypoint_i, hbos::sigma_from_octave(octave_i));
+///     const auto& result = screen.screen(matches);
+///     for (each match i) if (!result.inlier(i)) mark_outlier(i);
+///
+/// Threading: see screen.hpp; the free functions here are re-entrant.
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <cmath>
+
+#include "hbos/error.hpp"
+#include "hbos/pinhole.hpp"
+#include "hbos/pose_refinement.hpp"
+#include "hbos/residuals.hpp"
+#include "hbos/screen.hpp"
+#include "hbos/screen_strategies.hpp"
+
+namespace hbos {
+
+using Matchesd = Matches<double>;
+using Matchesf = Matches<float>;
+
+/// Fills `matches` (cleared first) with the map points `points_world` (3 x n [m]) projected by
+/// `T_cur_world` through `camera` as predictions, the keypoints `observed` (2 x n [px]), their
+/// scale sigmas `sigma` (n) and prior flags `on_dynamic_mask` (n).
+/// \throws InvalidArgument on mismatched sizes or a point at or behind the camera (depth <= 0).
+template <class Scalar, class DerivedPoints, class DerivedObserved, class DerivedSigma,
+          class DerivedMask>
+void project_matches(const Eigen::MatrixBase<DerivedPoints>& points_world,
+                     const Eigen::MatrixBase<DerivedObserved>& observed,
+                     const Eigen::DenseBase<DerivedSigma>& sigma,
+                     const Eigen::DenseBase<DerivedMask>& on_dynamic_mask,
+                     const Eigen::Transform<Scalar, 3, Eigen::Isometry>& T_cur_world,
+                     const PinholeCamera<Scalar>& camera, Matches<Scalar>& matches) {
+  detail::validate(camera);
+  const Eigen::Index n = points_world.cols();
+  detail::require(points_world.rows() == 3, "points_world must be 3 x n, got ", points_world.rows(),
+                  " rows");
+  detail::require(observed.rows() == 2 && observed.cols() == n, "observed must be 2 x ", n,
+                  ", got ", observed.rows(), " x ", observed.cols());
+  detail::require(sigma.size() == n, "sigma has ", sigma.size(), " entries for ", n, " points");
+  detail::require(on_dynamic_mask.size() == n, "on_dynamic_mask has ", on_dynamic_mask.size(),
+                  " entries for ", n, " points");
+  matches.clear();
+  matches.reserve(n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const Eigen::Matrix<Scalar, 3, 1> p_c =
+        T_cur_world * Eigen::Matrix<Scalar, 3, 1>(points_world.col(i));
+    detail::require(p_c.z() > Scalar(0), "point ", i, " is at or behind the camera (depth ",
+                    p_c.z(), " m)");
+    matches.add(camera.project(p_c), Eigen::Matrix<Scalar, 2, 1>(observed.col(i)),
+                static_cast<Scalar>(sigma.derived().coeff(i)),
+                static_cast<bool>(on_dynamic_mask.derived().coeff(i)));
+  }
+}
+
+/// project_matches with sigma 1 and no prior flags.
+template <class Scalar, class DerivedPoints, class DerivedObserved>
+void project_matches(const Eigen::MatrixBase<DerivedPoints>& points_world,
+                     const Eigen::MatrixBase<DerivedObserved>& observed,
+                     const Eigen::Transform<Scalar, 3, Eigen::Isometry>& T_cur_world,
+                     const PinholeCamera<Scalar>& camera, Matches<Scalar>& matches) {
+  const Eigen::Index n = points_world.cols();
+  project_matches(points_world, observed, Eigen::Array<Scalar, Eigen::Dynamic, 1>::Ones(n),
+                  Eigen::Array<bool, Eigen::Dynamic, 1>::Zero(n), T_cur_world, camera, matches);
+}
+
+/// Options of screen_and_refine_pose.
+struct IteratedScreenOptions {
+  int rounds = 4;  ///< screenings in all (ORB-SLAM2's PoseOptimization runs 4 rounds), >= 1
+  Eigen::Index min_inliers = 10;  ///< stop refitting below this many inliers (ORB-SLAM2: 10), >= 3
+  PoseRefinementOptions refinement{};  ///< the Gauss-Newton refit on each round's inliers
+};
+
+/// Screen -> refine the pose on the inliers -> re-project -> re-screen, `options.rounds` times.
+/// `matches` must hold the projections of `points_world` (3 x n [m]) under `T_cur_world`, e.g.
+/// from project_matches; on return both are updated to the refined pose, and the result is the
+/// screen under it.
+template <class Scalar, class DerivedPoints>
+const ScreenResult<Scalar>& screen_and_refine_pose(
+    ReprojectionScreen<Scalar>& screen, const Eigen::MatrixBase<DerivedPoints>& points_world,
+    const PinholeCamera<Scalar>& camera, Eigen::Transform<Scalar, 3, Eigen::Isometry>& T_cur_world,
+    Matches<Scalar>& matches, const IteratedScreenOptions& options = {}) {
+  detail::require(points_world.rows() == 3 && points_world.cols() == matches.size(),
+                  "points_world must be 3 x ", matches.size(), ", got ", points_world.rows(), " x ",
+                  points_world.cols());
+  detail::require(options.min_inliers >= 3, "IteratedScreenOptions min_inliers must be >= 3, got ",
+                  options.min_inliers);
+  using Vec3 = Eigen::Matrix<Scalar, 3, 1>;
+  auto refit = [&](const ScreenResult<Scalar>& result, Matches<Scalar>& m) {
+    if (result.n_inliers() < options.min_inliers) return false;
+    refine_pose(
+        m.size(), [&](Eigen::Index i) { return Vec3(points_world.col(i)); },
+        [&](Eigen::Index i) { return m.observed(i); }, [&](Eigen::Index i) { return m.sigma(i); },
+        [&](Eigen::Index i) { return result.inlier(i); }, camera, T_cur_world, options.refinement);
+    for (Eigen::Index i = 0; i < m.size(); ++i) {
+      const Vec3 p_c = T_cur_world * Vec3(points_world.col(i));
+      // A point pushed behind the camera by the refit keeps its old prediction.
+      if (p_c.z() > Scalar(0)) m.set_predicted(i, camera.project(p_c));
+    }
+    return true;
+  };
+  return screen.screen_iterated(matches, refit, options.rounds);
+}
+
+}  // namespace hbos

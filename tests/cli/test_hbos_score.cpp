@@ -1,0 +1,332 @@
+// End-to-end tests of the hbos-score executable: good runs whose output is checked against the
+// library, the PyOD mode against PyOD's own numbers, and every malformed input and bad option
+// checked for its exit code and message.
+
+#include <sys/wait.h>
+
+#include <hbos/model.hpp>
+#include <hbos/threshold.hpp>
+
+#include <algorithm>
+#include <catch2/catch.hpp>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "csv_reader.hpp"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::string kData = HBOS_CLI_TEST_DATA;
+
+struct Run {
+  int exit_code = -1;  // -1: killed by a signal
+  std::string out;
+  std::string err;
+};
+
+std::string slurp(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+/// A shell word: single-quoted, with embedded single quotes escaped.
+std::string quoted(const std::string& word) {
+  std::string out = "'";
+  for (const char c : word) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+fs::path work_dir() {
+  const fs::path dir = fs::path(HBOS_CLI_WORK_DIR) / "hbos_score_runs";
+  fs::create_directories(dir);
+  return dir;
+}
+
+/// Runs hbos-score with `args`, standard input from `input` (empty: /dev/null). `tag` names the
+/// files that capture its output, so concurrently running tests do not share them.
+Run hbos_score(const std::string& tag, const std::vector<std::string>& args,
+               const std::string& input = "") {
+  const fs::path out = work_dir() / (tag + ".out");
+  const fs::path err = work_dir() / (tag + ".err");
+  std::string command = quoted(HBOS_SCORE_EXE);
+  for (const std::string& arg : args) command += " " + quoted(arg);
+  command += " < " + quoted(input.empty() ? "/dev/null" : input) + " > " + quoted(out.string()) +
+             " 2> " + quoted(err.string());
+  const int status = std::system(command.c_str());
+  Run run;
+  if (status != -1 && WIFEXITED(status)) run.exit_code = WEXITSTATUS(status);
+  run.out = slurp(out);
+  run.err = slurp(err);
+  return run;
+}
+
+hbos::cli::CsvTable read_output(const std::string& text) {
+  hbos::cli::CsvOptions options;
+  options.header = hbos::cli::HeaderMode::Present;
+  return hbos::cli::parse_csv(text, "output", options);
+}
+
+std::vector<double> read_numbers(const std::string& path) {
+  std::ifstream in(path);
+  std::vector<double> values;
+  double v = 0.0;
+  while (in >> v) values.push_back(v);
+  return values;
+}
+
+}  // namespace
+
+TEST_CASE("hbos-score: a good run, checked against the library", "[cli][hbos_score]") {
+  const fs::path output = work_dir() / "good_scores.csv";
+  fs::remove(output);
+  const Run run = hbos_score("good", {kData + "/good.csv", "--label-column", "label",
+                                      "--contributions", "-o", output.string()});
+  INFO(run.err);
+  REQUIRE(run.exit_code == 0);
+  CHECK(run.out.empty());  // the results went to the file
+  CHECK_THAT(run.err, Catch::Contains(
+                          "good.csv: 60 rows x 3 features (header detected; label column \"label\" "
+                          "excluded)"));
+  CHECK_THAT(run.err, Catch::Contains("model: default: equal-width, 5 bins x 5 shifts"));
+  CHECK_THAT(run.err, Catch::Contains("threshold: contamination:0.1 -> "));
+  CHECK_THAT(run.err, Catch::Contains("outliers: 6 of 60 rows (10.0 %)"));
+  CHECK_THAT(run.err,
+             Catch::Contains("ROC-AUC against \"label\": 1.0000 (3 labelled outliers; 3 of the 6"));
+  CHECK_THAT(run.err, Catch::Contains("top 5 rows by score:\n"));
+  for (const char* line : {"line 14 ", "line 32 ", "line 43 "})
+    CHECK_THAT(run.err, Catch::Contains(line));
+
+  const auto result = read_output(slurp(output));
+  REQUIRE(result.column_names ==
+          std::vector<std::string>{"score", "label", "contrib_a", "contrib_b", "contrib_angle"});
+  REQUIRE(result.rows() == 60);
+  const Eigen::VectorXd scores = result.features.col(0);
+
+  // The same scores as the library, bit for bit (the output round-trips).
+  hbos::cli::CsvOptions csv;
+  csv.label_column = "label";
+  const auto input = hbos::cli::read_csv(kData + "/good.csv", csv);
+  const auto model = hbos::Hbosd::fit(input.features);
+  CHECK(scores == model.score(input.features));
+  CHECK(result.features.rightCols(3) == model.contributions(input.features));
+
+  // Labels are exactly score > the contamination threshold.
+  std::vector<double> scratch;
+  const double threshold = hbos::compute_threshold(scores, hbos::Contamination{0.1}, scratch);
+  for (Eigen::Index i = 0; i < 60; ++i)
+    CHECK(result.features(i, 1) == (scores[i] > threshold ? 1.0 : 0.0));
+  // The planted outliers (rows 12, 30, 41) score highest and are flagged, each through the
+  // feature that was planted: b for row 12, a for row 41.
+  std::vector<Eigen::Index> order(60);
+  for (Eigen::Index i = 0; i < 60; ++i) order[static_cast<std::size_t>(i)] = i;
+  std::sort(order.begin(), order.end(),
+            [&](Eigen::Index p, Eigen::Index q) { return scores[p] > scores[q]; });
+  std::sort(order.begin(), order.begin() + 3);
+  CHECK(order[0] == 12);
+  CHECK(order[1] == 30);
+  CHECK(order[2] == 41);
+  for (const Eigen::Index row : {12, 30, 41}) CHECK(result.features(row, 1) == 1.0);
+  CHECK(result.features(12, 3) > result.features(12, 2));
+  CHECK(result.features(41, 2) > result.features(41, 3));
+}
+
+TEST_CASE("hbos-score: CRLF, quoted names, stdin and stdout give the same bytes",
+          "[cli][hbos_score]") {
+  const Run file = hbos_score("same_file", {kData + "/good.csv", "--label-column", "label", "-q"});
+  const Run crlf =
+      hbos_score("same_crlf", {kData + "/good_crlf.csv", "--label-column", "label", "-q"});
+  const Run piped =
+      hbos_score("same_stdin", {"-", "--label-column", "3", "-q"}, kData + "/good.csv");
+  REQUIRE(file.exit_code == 0);
+  REQUIRE(crlf.exit_code == 0);
+  REQUIRE(piped.exit_code == 0);
+  CHECK(file.err.empty());  // --quiet
+  CHECK(file.out.rfind("score,label\n", 0) == 0);
+  CHECK(std::count(file.out.begin(), file.out.end(), '\n') == 61);
+  CHECK(crlf.out == file.out);
+  CHECK(piped.out == file.out);
+}
+
+TEST_CASE("hbos-score: the PyOD mode reproduces PyOD on ODDS vertebral",
+          "[cli][hbos_score][pyod]") {
+  const std::string dir = kData + "/pyod_vertebral/";
+  const Run run = hbos_score("pyod_vertebral", {dir + "X.csv", "--mode", "pyod"});
+  INFO(run.err);
+  REQUIRE(run.exit_code == 0);
+  CHECK_THAT(run.err,
+             Catch::Contains("240 rows x 6 features (no header (the first line is numeric"));
+  CHECK_THAT(run.err,
+             Catch::Contains("model: pyod: PyOD 3.6.5 HBOS, n_bins 10, alpha 0.1, tol 0.5"));
+  const auto result = read_output(run.out);
+  const std::vector<double> scores = read_numbers(dir + "scores.csv");
+  const std::vector<double> labels = read_numbers(dir + "labels.csv");
+  REQUIRE(result.rows() == 240);
+  REQUIRE(scores.size() == 240);
+  REQUIRE(labels.size() == 240);
+  for (Eigen::Index i = 0; i < 240; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    CHECK(result.features(i, 0) == Approx(scores[k]).epsilon(1e-12));
+    CHECK(result.features(i, 1) == labels[k]);
+  }
+  const double threshold = read_numbers(dir + "threshold.txt").at(0);
+  char expected[64];
+  std::snprintf(expected, sizeof expected, "threshold: contamination:0.1 -> %.6g ", threshold);
+  CHECK_THAT(run.err, Catch::Contains(expected));
+}
+
+TEST_CASE("hbos-score: other binnings, periodic columns, tails and thresholds run",
+          "[cli][hbos_score]") {
+  const Run run =
+      hbos_score("options", {kData + "/good.csv", "--label-column", "label", "--periodic-columns",
+                             "angle", "--tail", "upper", "--bins", "sturges", "--shifts", "3",
+                             "--threshold", "mad:2", "--top", "1"});
+  INFO(run.err);
+  REQUIRE(run.exit_code == 0);
+  CHECK_THAT(
+      run.err,
+      Catch::Contains("model: default: equal-width, sturges bins x 3 shifts (averaged shifted "
+                      "histograms), tail upper; periodic (period 6.28319 from -3.14159): angle"));
+  CHECK_THAT(run.err,
+             Catch::Contains("bins per feature: 7 for every feature"));  // ceil(log2(60) + 1)
+  CHECK_THAT(run.err, Catch::Contains("threshold: mad:2 -> "));
+  CHECK_THAT(run.err, Catch::Contains("top 1 rows by score:\n  line 32 "));
+
+  const Run fixed =
+      hbos_score("fixed_width", {kData + "/good.csv", "--label-column", "label", "--binning",
+                                 "fixed-width", "--width", "2.5", "--threshold", "fixed:4", "-q"});
+  REQUIRE(fixed.exit_code == 0);
+  const Run frequency =
+      hbos_score("equal_frequency", {kData + "/good.csv", "--label-column", "label", "--binning",
+                                     "equal-frequency", "--bins", "4"});
+  REQUIRE(frequency.exit_code == 0);
+  CHECK_THAT(frequency.err, Catch::Contains("model: default: equal-frequency, 4 bins, tail both"));
+}
+
+TEST_CASE("hbos-score: malformed CSV exits 2 with file:line:column", "[cli][hbos_score][errors]") {
+  struct Case {
+    std::string file;
+    std::string position;  // line:column
+    std::string message;
+    std::vector<std::string> extra_args;
+  };
+  const std::vector<Case> cases{
+      {"empty.csv", "1:1", "empty input: no header and no data rows", {}},
+      {"header_only.csv", "2:1", "no data rows after the header", {}},
+      {"ragged_short.csv", "4:4", "row has 2 cells but line 1 has 3", {}},
+      {"ragged_long.csv", "3:7", "row has 4 cells but line 1 has 3", {}},
+      {"ragged_crlf.csv", "3:4", "row has 2 cells but line 1 has 3", {}},
+      {"non_numeric.csv", "3:3", "\"five\" is not a number (field 2, \"b\")", {}},
+      {"trailing_garbage.csv", "4:5", "\"9x\" is not a number (field 3, \"c\")", {}},
+      {"nan.csv",
+       "3:5",
+       "\"NaN\" is not a finite number (field 3, \"c\"); NaN and infinity are not allowed",
+       {}},
+      {"inf.csv",
+       "3:1",
+       "\"-inf\" is not a finite number (field 1, \"a\"); NaN and infinity are not allowed",
+       {}},
+      {"empty_cell.csv",
+       "3:3",
+       "empty cell (field 2, \"b\"); missing values are not supported",
+       {}},
+      {"blank_line.csv",
+       "3:1",
+       "blank line between rows (only blank lines at the end are ignored)",
+       {}},
+      {"unterminated_quote.csv",
+       "1:3",
+       "unterminated quoted cell (a quoted cell cannot span lines)",
+       {}},
+      {"out_of_range.csv", "3:5", "\"1e999\" is beyond the range of a double (field 3, \"c\")", {}},
+      {"bad_label.csv",
+       "3:5",
+       "label \"0.5\" is neither 0 nor 1 (field 3, \"label\"; 1 marks an outlier)",
+       {"--label-column", "label"}},
+  };
+  // An existing output file must survive a failed run untouched.
+  const fs::path output = work_dir() / "kept.csv";
+  { std::ofstream(output) << "old\n"; }
+  for (const Case& c : cases) {
+    const std::string path = kData + "/malformed/" + c.file;
+    std::vector<std::string> args{path, "-o", output.string()};
+    args.insert(args.end(), c.extra_args.begin(), c.extra_args.end());
+    const Run run = hbos_score("malformed_" + c.file, args);
+    INFO(c.file << ": " << run.err);
+    CHECK(run.exit_code == 2);
+    CHECK(run.err == path + ":" + c.position + ": " + c.message + "\n");
+  }
+  CHECK(slurp(output) == "old\n");
+
+  const Run empty_stdin = hbos_score("malformed_stdin", {"-"});
+  CHECK(empty_stdin.exit_code == 2);
+  CHECK(empty_stdin.err == "<stdin>:1:1: empty input: no header and no data rows\n");
+}
+
+TEST_CASE("hbos-score: bad options exit 2 with a message", "[cli][hbos_score][errors]") {
+  const std::string good = kData + "/good.csv";
+  struct Case {
+    std::vector<std::string> args;
+    std::string message;
+  };
+  const std::vector<Case> cases{
+      {{}, "input is required"},
+      {{good, "--frobnicate"}, "The following argument was not expected: --frobnicate"},
+      {{good, "--bins", "0"}, "--bins: \"0\" is neither a bin count in [1, 65536]"},
+      {{good, "--bins", "many"}, "--bins: \"many\" is neither a bin count"},
+      {{good, "--threshold", "median:3"}, "--threshold: \"median:3\": unknown rule"},
+      {{good, "--threshold", "contamination:0.9"}, "contamination must lie in (0, 0.5]"},
+      {{good, "--mode", "sklearn"}, "--mode: sklearn not in {default,pyod}"},
+      {{good, "--binning", "quantile"}, "--binning: quantile not in"},
+      {{good, "--tail", "left"}, "--tail: left not in"},
+      {{good, "--shifts", "two"}, "--shifts"},
+      {{good, "--header", "--no-header"}, "excludes"},
+      {{good, "--delimiter", ";;"}, "\";;\" is not one character (or tab)"},
+      {{good, "--mode", "pyod", "--shifts", "2"}, "--shifts is not available with --mode pyod"},
+      {{good, "--mode", "pyod", "--bins", "sqrt"}, "--bins sqrt is not available with --mode pyod"},
+      {{good, "--alpha", "0.2"}, "--alpha belongs to --mode pyod"},
+      {{good, "--binning", "fixed-width"}, "--binning fixed-width needs --width"},
+      {{good, "--width", "1"}, "--width applies to --binning fixed-width only"},
+      {{good, "--period", "360"}, "--period/--period-start need --periodic-columns"},
+      {{good, "--label-column", "truth"}, "label column: no column is named \"truth\""},
+      {{good, "--periodic-columns", "heading"},
+       "--periodic-columns: no column is named \"heading\""},
+      {{good, "--periodic-columns", "a,,b"}, "empty item"},
+      {{good, "--label-column", "label", "--periodic-columns", "label"},
+       "\"label\" is the label column"},
+      {{good, "--binning", "fixed-width", "--width", "1e-9"}, "more than max_bins"},
+  };
+  int index = 0;
+  for (const Case& c : cases) {
+    const Run run = hbos_score("option_" + std::to_string(index++), c.args);
+    INFO(run.err);
+    CHECK(run.exit_code == 2);
+    CHECK_THAT(run.err, Catch::Contains(c.message));
+    CHECK(run.out.empty());
+  }
+}
+
+TEST_CASE("hbos-score: help, version and an unwritable output", "[cli][hbos_score]") {
+  const Run help = hbos_score("help", {"--help"});
+  CHECK(help.exit_code == 0);
+  CHECK_THAT(help.out, Catch::Contains("Usage: hbos-score [OPTIONS] input") &&
+                           Catch::Contains("Exit codes:"));
+  const Run version = hbos_score("version", {"--version"});
+  CHECK(version.exit_code == 0);
+  CHECK_THAT(version.out, Catch::StartsWith("hbos-score "));
+
+  const Run unwritable =
+      hbos_score("unwritable", {kData + "/good.csv", "-o", "/nonexistent/dir/out.csv"});
+  CHECK(unwritable.exit_code == 1);
+  CHECK_THAT(unwritable.err,
+             Catch::Contains("hbos-score: error: cannot create a temporary file next to "
+                             "/nonexistent/dir/out.csv"));
+}

@@ -1,0 +1,73 @@
+// Proves the per-frame screening path allocates nothing after warm-up, for every strategy, in
+// single and iterated mode, with frames of varying size (the counting operator new lives in
+// tests/unit/alloc_counter.cpp).
+
+#include <catch2/catch.hpp>
+
+#include <hbos/reprojection.hpp>
+
+#include <vector>
+
+#include "../support/alloc_counter.hpp"
+#include "../support/screening_eval.hpp"
+#include "../support/synthetic_scene.hpp"
+
+TEST_CASE("screening allocates nothing after warm-up", "[reprojection][alloc]") {
+  std::vector<hbos_test::Scene> scenes;
+  for (int n : {5000, 300, 2000, 100, 5000}) {
+    hbos_test::SceneConfig c;
+    c.seed = static_cast<std::uint64_t>(n);
+    c.n_matches = n;
+    c.person_share = 0.1;
+    c.gross_share = 0.05;
+    c.masked_person_share = 0.05;
+    scenes.push_back(hbos_test::make_scene(c));
+  }
+  hbos::HbosScreen with_angle;
+  with_angle.angle = hbos::AngleFeature::AboveNoise;
+  const std::vector<hbos::ScreenStrategy> strategies{
+      hbos::HbosScreen{},     hbos::HbosScreen::paper(), with_angle,     hbos::ChiSquareGate{},
+      hbos::FixedPixelGate{}, hbos::QuantileGate{},      hbos::MadGate{}};
+  const hbos::PinholeCamerad camera;
+
+  for (const auto& strategy : strategies) {
+    INFO("strategy " << hbos::strategy_name(strategy));
+    hbos::ReprojectionScreend screen(strategy);
+    screen.reserve(5000);
+    hbos::Matchesd matches;
+    matches.reserve(5000);
+    // Warm-up: one frame of the largest size through both paths.
+    hbos_test::load_matches(scenes[0], matches);
+    screen.screen(matches);
+    Eigen::Isometry3d T = scenes[0].T_cur_world_rough;
+    hbos::screen_and_refine_pose(screen, scenes[0].points_world, camera, T, matches);
+
+    hbos_test::AllocationCounter counter;
+    Eigen::Index kept = 0;
+    for (const auto& scene : scenes) {
+      hbos_test::load_matches(scene, matches);
+      kept += screen.screen(matches).n_inliers();
+      Eigen::Isometry3d T_cur_world = scene.T_cur_world_rough;
+      kept += hbos::screen_and_refine_pose(screen, scene.points_world, camera, T_cur_world, matches)
+                  .n_inliers();
+    }
+    CHECK(counter.count() == 0);
+    CHECK(kept > 0);
+  }
+}
+
+TEST_CASE("reserve alone is enough: the first frame does not allocate", "[reprojection][alloc]") {
+  hbos_test::SceneConfig c;
+  c.n_matches = 1000;
+  c.gross_share = 0.05;
+  const hbos_test::Scene scene = hbos_test::make_scene(c);
+  hbos::ReprojectionScreend screen;
+  screen.reserve(1000);
+  hbos::Matchesd matches;
+  matches.reserve(1000);
+  hbos_test::AllocationCounter counter;
+  hbos_test::load_matches(scene, matches);
+  const auto& result = screen.screen(matches);
+  CHECK(counter.count() == 0);
+  CHECK(result.size() == 1000);
+}
