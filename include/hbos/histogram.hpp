@@ -27,12 +27,19 @@
 /// Interval convention: bin k holds [e_k, e_{k+1}), the last bin is closed. Counting and lookup
 /// call the same `bin_of`, so a training value is always scored from the bin it was counted in.
 ///
+/// Speed: fitting reads the column twice (a fused min/max/finiteness pass, then a counting pass
+/// with four interleaved sub-histograms so increments of one bin do not wait on each other);
+/// scoring is one pass of a subtract, a multiply, a truncation and a table lookup per value, with
+/// every out-of-range or non-finite value diverted to a slow path. Columns with direct access
+/// (matrices, maps, blocks, row-major maps) are read in place through their stride.
+///
 /// Threading: a fitted Histogram is immutable through its const interface; concurrent const
 /// calls are safe. `refit` is the (non-const) reuse path of Workspace.
 
 #include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <type_traits>
 #include <vector>
@@ -50,12 +57,101 @@ struct ScoringOptions {
 };
 
 namespace detail {
+
 inline void validate(const ScoringOptions& o) {
   require(o.empty_bin_count > 0.0 && o.empty_bin_count <= 1.0,
           "empty_bin_count must lie in (0, 1], got ", o.empty_bin_count);
   require(o.range_tolerance >= 0.0 && std::isfinite(o.range_tolerance),
           "range_tolerance must be finite and >= 0, got ", o.range_tolerance);
 }
+
+/// A column as a strided pointer: what every kernel reads.
+template <class Scalar>
+struct ColumnView {
+  const Scalar* data = nullptr;
+  Eigen::Index size = 0;
+  Eigen::Index stride = 1;
+  [[nodiscard]] Scalar operator[](Eigen::Index i) const { return data[i * stride]; }
+};
+
+/// A view of `column`: in place when the expression has direct access (matrices, maps, blocks),
+/// otherwise evaluated into `storage`.
+template <class Scalar, class Column>
+ColumnView<Scalar> view_of(const Column& column, std::vector<Scalar>& storage) {
+  if constexpr ((Column::Flags & Eigen::DirectAccessBit) != 0) {
+    return {column.data(), column.size(), column.innerStride()};
+  } else {
+    storage.resize(static_cast<std::size_t>(column.size()));
+    for (Eigen::Index i = 0; i < column.size(); ++i)
+      storage[static_cast<std::size_t>(i)] = column.coeff(i);
+    return {storage.data(), column.size(), 1};
+  }
+}
+
+/// Throws naming the first non-finite value of feature `feature`.
+template <class Scalar>
+[[noreturn]] void throw_not_finite(const ColumnView<Scalar>& x, Eigen::Index feature) {
+  for (Eigen::Index i = 0; i < x.size; ++i)
+    require(std::isfinite(x[i]), "X(", i, ", ", feature, ") is not finite (", x[i], ")");
+  throw InvalidArgument(concat("feature ", feature, " has a non-finite value"));
+}
+
+/// Calls `body(value_at)` with an accessor specialised for contiguous columns, so the common
+/// unit-stride case compiles to plain (vectorisable) pointer loops.
+template <class Scalar, class Body>
+void with_access(const ColumnView<Scalar>& x, Body&& body) {
+  if (x.stride == 1) {
+    const Scalar* p = x.data;
+    body([p](Eigen::Index i) { return p[i]; });
+  } else {
+    const Scalar* p = x.data;
+    const Eigen::Index stride = x.stride;
+    body([p, stride](Eigen::Index i) { return p[i * stride]; });
+  }
+}
+
+/// min and max of a column in one pass, throwing on any NaN or infinity.
+template <class Scalar>
+std::pair<Scalar, Scalar> finite_min_max(const ColumnView<Scalar>& x, Eigen::Index feature) {
+  // v * 0 is 0 for finite v and NaN otherwise, so one accumulated sum checks finiteness in the
+  // same pass. GCC does not vectorise min/max reductions on its own; on contiguous data Eigen's
+  // packet primitives do it explicitly (SSE2 and up), two packets per step for parallelism.
+  Scalar lo = x[0], hi = x[0], check = 0;
+  Eigen::Index i = 0;
+  if (x.stride == 1) {
+    using Packet = typename Eigen::internal::packet_traits<Scalar>::type;
+    constexpr Eigen::Index P = Eigen::internal::packet_traits<Scalar>::size;
+    if constexpr (P > 1) {
+      namespace in = Eigen::internal;
+      const Scalar* p = x.data;
+      Packet lo0 = in::pset1<Packet>(lo), lo1 = lo0, hi0 = lo0, hi1 = lo0;
+      Packet c0 = in::pset1<Packet>(Scalar(0)), c1 = c0;
+      const Packet zero = c0;
+      for (; i + 2 * P <= x.size; i += 2 * P) {
+        const Packet a = in::ploadu<Packet>(p + i);
+        const Packet b = in::ploadu<Packet>(p + i + P);
+        lo0 = in::pmin(lo0, a);
+        lo1 = in::pmin(lo1, b);
+        hi0 = in::pmax(hi0, a);
+        hi1 = in::pmax(hi1, b);
+        c0 = in::padd(c0, in::pmul(a, zero));
+        c1 = in::padd(c1, in::pmul(b, zero));
+      }
+      lo = in::predux_min(in::pmin(lo0, lo1));
+      hi = in::predux_max(in::pmax(hi0, hi1));
+      check = in::predux(in::padd(c0, c1));
+    }
+  }
+  for (; i < x.size; ++i) {
+    const Scalar v = x[i];
+    lo = v < lo ? v : lo;
+    hi = v > hi ? v : hi;
+    check += v * Scalar(0);
+  }
+  if (!(check == Scalar(0))) throw_not_finite(x, feature);
+  return {lo, hi};
+}
+
 }  // namespace detail
 
 /// A fitted one-feature histogram. See the file comment for the maths and the rules.
@@ -66,7 +162,7 @@ class Histogram {
  public:
   using Index = Eigen::Index;
 
-  /// Number of bins, >= 1 once fitted.
+  /// Number of bins, >= 1 once fitted (fine bins when shifts > 1).
   [[nodiscard]] Index bins() const { return static_cast<Index>(counts_.size()); }
   /// bins() + 1 edges, ascending; bin k is [edges[k], edges[k+1]).
   [[nodiscard]] const std::vector<Scalar>& edges() const { return edges_; }
@@ -99,21 +195,39 @@ class Histogram {
     return contribution_[static_cast<std::size_t>(in_range_bin(x))];
   }
 
+  /// Contributions of a whole column: out[i] = contribution(x[i]) (or += with `accumulate`).
+  /// Throws naming X(i, feature) on a non-finite value.
+  void contributions_into(const detail::ColumnView<Scalar>& x, Scalar* out, bool accumulate,
+                          Index feature = 0) const;
+
   /// Pre-grows storage for up to `bins` bins, so refits up to that size do not allocate.
   void reserve(Index bins) {
     edges_.reserve(static_cast<std::size_t>(bins + 1));
     counts_.reserve(static_cast<std::size_t>(bins));
     contribution_.reserve(static_cast<std::size_t>(bins));
+    sub_counts_.reserve(static_cast<std::size_t>(4 * bins));
+  }
+
+  /// Frees the buffers only fitting needs (a fitted model keeps just what scoring reads).
+  void release_fit_buffers() {
+    std::vector<std::uint32_t>().swap(sub_counts_);
+    std::vector<double>().swap(work_);
   }
 
   /// Re-fits this histogram to `column` in place, reusing its storage and `scratch`: no heap
-  /// allocation once the buffers have grown to the sizes needed. `feature` only labels errors.
-  /// The column must be non-empty and finite (the model checks).
+  /// allocation once the buffers have grown to the sizes needed. `feature` labels errors.
+  /// \throws InvalidArgument if the column is empty or holds a non-finite value.
   template <class Column>
   void refit(const Column& column, const FeatureSpec& spec, const ScoringOptions& options,
-             std::vector<Scalar>& scratch, Index feature = 0);
+             std::vector<Scalar>& scratch, Index feature = 0) {
+    const detail::ColumnView<Scalar> view = detail::view_of(column, scratch);
+    refit_view(view, spec, options, scratch, feature);
+  }
 
  private:
+  void refit_view(const detail::ColumnView<Scalar>& x, const FeatureSpec& spec,
+                  const ScoringOptions& options, std::vector<Scalar>& scratch, Index feature);
+
   [[nodiscard]] Scalar wrap(Scalar x) const {
     Scalar t = x - lo_;
     if (t < Scalar(0) || t >= period_) t -= period_ * std::floor(t / period_);
@@ -132,19 +246,19 @@ class Histogram {
     return static_cast<Index>(std::upper_bound(first, last, x) - first);
   }
 
-  template <class Column>
-  void place_uniform_edges(const Column& column, const FeatureSpec& spec,
+  Index rule_bins(const detail::ColumnView<Scalar>& x, const Binning& binning, Scalar lo, Scalar hi,
+                  std::vector<Scalar>& scratch);
+  void place_uniform_edges(const detail::ColumnView<Scalar>& x, const FeatureSpec& spec,
                            std::vector<Scalar>& scratch, Index feature);
   void place_equal_frequency_edges(const Scalar* sorted, Index n, Index k);
-  template <class Column>
-  void count_and_score(const Column& values, const ScoringOptions& options);
-  template <class Column>
-  Index rule_bins(const Column& column, const Binning& binning, Scalar lo, Scalar hi,
-                  std::vector<Scalar>& scratch) const;
+  void count(const detail::ColumnView<Scalar>& x);
+  void score_bins(Index n, const ScoringOptions& options);
 
   std::vector<Scalar> edges_;
   std::vector<Index> counts_;
   std::vector<Scalar> contribution_;
+  std::vector<std::uint32_t> sub_counts_;  // fitting only: interleaved counting, BR cells
+  std::vector<double> work_;               // fitting only: Birgé–Rozenblac's bucketed values
   Scalar lo_ = 0, hi_ = 0;
   Scalar inv_width_ = 0;  // uniform bins only (0 for a constant feature)
   Scalar period_ = 0;     // periodic only
@@ -163,10 +277,37 @@ class Histogram {
 // ---------------------------------------------------------------------------------------------
 
 template <class Scalar>
-template <class Column>
-Eigen::Index Histogram<Scalar>::rule_bins(const Column& column, const Binning& binning, Scalar lo,
-                                          Scalar hi, std::vector<Scalar>& scratch) const {
-  const Index n = column.size();
+void Histogram<Scalar>::contributions_into(const detail::ColumnView<Scalar>& x, Scalar* out,
+                                           bool accumulate, Index feature) const {
+  // Local copies: the compiler cannot prove that stores to `out` leave the members unchanged and
+  // would otherwise reload them after every store.
+  const Scalar lo = lo_, hi = hi_, inv = inv_width_;
+  const auto bins_f = static_cast<Scalar>(bins());
+  const Scalar* table = contribution_.data();
+  const bool fast = uniform_ && inv > Scalar(0);
+  // The fast path takes in-range values strictly below the top edge; everything else (the top
+  // edge, out of range, periodic wrap, irregular bins, NaN) takes the exact slow path, which
+  // agrees with the fast path wherever both apply.
+  auto value_of = [&](Scalar v) {
+    const Scalar t = (v - lo) * inv;
+    if (fast && t >= Scalar(0) && t < bins_f && v < hi) return table[static_cast<Index>(t)];
+    if (!std::isfinite(v)) detail::throw_not_finite(x, feature);
+    return contribution(v);
+  };
+  detail::with_access(x, [&](auto at) {
+    if (accumulate) {
+      for (Index i = 0; i < x.size; ++i) out[i] += value_of(at(i));
+    } else {
+      for (Index i = 0; i < x.size; ++i) out[i] = value_of(at(i));
+    }
+  });
+}
+
+template <class Scalar>
+Eigen::Index Histogram<Scalar>::rule_bins(const detail::ColumnView<Scalar>& x,
+                                          const Binning& binning, Scalar lo, Scalar hi,
+                                          std::vector<Scalar>& scratch) {
+  const Index n = x.size;
   const double range = static_cast<double>(hi) - static_cast<double>(lo);
   const double dn = static_cast<double>(n);
   switch (binning.rule) {
@@ -178,12 +319,11 @@ Eigen::Index Histogram<Scalar>::rule_bins(const Column& column, const Binning& b
       return detail::clamp_bins(static_cast<double>(detail::sturges_bins(n)), binning.max_bins);
     case BinCountRule::Scott: {
       double mean = 0.0;
-      for (Index i = 0; i < n; ++i)
-        mean += static_cast<double>(scratch[static_cast<std::size_t>(i)]);
+      for (Index i = 0; i < n; ++i) mean += static_cast<double>(x[i]);
       mean /= dn;
       double ss = 0.0;
       for (Index i = 0; i < n; ++i) {
-        const double d = static_cast<double>(scratch[static_cast<std::size_t>(i)]) - mean;
+        const double d = static_cast<double>(x[i]) - mean;
         ss += d * d;
       }
       const double h =
@@ -191,28 +331,37 @@ Eigen::Index Histogram<Scalar>::rule_bins(const Column& column, const Binning& b
       return detail::bins_from_width(range, h, n, binning.max_bins);
     }
     case BinCountRule::FreedmanDiaconis: {
-      Scalar* v = scratch.data();  // sorted by the caller
+      // numpy's linear-interpolation quartiles by selection (O(n)) on a copy.
+      if (x.data != scratch.data()) {
+        scratch.resize(static_cast<std::size_t>(n));
+        for (Index i = 0; i < n; ++i) scratch[static_cast<std::size_t>(i)] = x[i];
+      }
       auto quantile = [&](double q) {
         const double pos = q * (dn - 1.0);
-        const auto i = static_cast<std::size_t>(std::floor(pos));
+        const auto i = static_cast<std::ptrdiff_t>(std::floor(pos));
         const double g = pos - static_cast<double>(i);
-        const double a = static_cast<double>(v[i]);
-        const double b = i + 1 < static_cast<std::size_t>(n) ? static_cast<double>(v[i + 1]) : a;
+        std::nth_element(scratch.begin(), scratch.begin() + i, scratch.begin() + n);
+        const double a = static_cast<double>(scratch[static_cast<std::size_t>(i)]);
+        const double b = i + 1 < n ? static_cast<double>(*std::min_element(scratch.begin() + i + 1,
+                                                                           scratch.begin() + n))
+                                   : a;
         return a + (b - a) * g;
       };
-      const double iqr = quantile(0.75) - quantile(0.25);
+      const double q1 = quantile(0.25);
+      const double iqr = quantile(0.75) - q1;
       return detail::bins_from_width(range, 2.0 * iqr / std::cbrt(dn), n, binning.max_bins);
     }
     case BinCountRule::BirgeRozenblac:
-      return detail::birge_rozenblac_bins(scratch.data(), n, binning.max_bins);
+      return detail::birge_rozenblac_bins(x.data, n, x.stride, lo, hi, binning.max_bins, work_,
+                                          sub_counts_);
   }
   return binning.bins;
 }
 
 template <class Scalar>
-template <class Column>
-void Histogram<Scalar>::place_uniform_edges(const Column& column, const FeatureSpec& spec,
-                                            std::vector<Scalar>& scratch, Index feature) {
+void Histogram<Scalar>::place_uniform_edges(const detail::ColumnView<Scalar>& x,
+                                            const FeatureSpec& spec, std::vector<Scalar>& scratch,
+                                            Index feature) {
   const Binning& binning = spec.binning;
   Index k = 1;
   Scalar width = 0;
@@ -224,29 +373,30 @@ void Histogram<Scalar>::place_uniform_edges(const Column& column, const FeatureS
       // The period must hold a whole number of bins: the width is rounded to the nearest divisor.
       k = detail::clamp_bins(std::round(spec.period / binning.width), binning.max_bins);
     } else {
-      k = rule_bins(column, binning, lo_, hi_, scratch);
+      k = rule_bins(x, binning, Scalar(0), period_, scratch);
     }
     width = period_ / static_cast<Scalar>(k);
-  } else if (binning.method == BinningMethod::FixedWidth) {
-    const Scalar lo = column.minCoeff();
-    const Scalar hi = column.maxCoeff();
-    const double first = std::floor((static_cast<double>(lo) - binning.origin) / binning.width);
-    const double last =
-        std::floor((static_cast<double>(hi) - binning.origin) / binning.width) + 1.0;
-    detail::require(
-        last - first <= static_cast<double>(binning.max_bins) / static_cast<double>(shifts_),
-        "feature ", feature, ": fixed bin width ", binning.width, " over the range [", lo, ", ", hi,
-        "] needs ", last - first, " bins, more than max_bins = ", binning.max_bins);
-    k = static_cast<Index>(last - first);
-    width = static_cast<Scalar>(binning.width);
-    lo_ = static_cast<Scalar>(binning.origin + first * binning.width);
-    hi_ = static_cast<Scalar>(binning.origin + last * binning.width);
   } else {
-    lo_ = column.minCoeff();
-    hi_ = column.maxCoeff();
-    if (hi_ > lo_) {
-      k = rule_bins(column, binning, lo_, hi_, scratch);
-      width = (hi_ - lo_) / static_cast<Scalar>(k);
+    const auto [lo, hi] = detail::finite_min_max(x, feature);
+    if (binning.method == BinningMethod::FixedWidth) {
+      const double first = std::floor((static_cast<double>(lo) - binning.origin) / binning.width);
+      const double last =
+          std::floor((static_cast<double>(hi) - binning.origin) / binning.width) + 1.0;
+      detail::require(
+          last - first <= static_cast<double>(binning.max_bins) / static_cast<double>(shifts_),
+          "feature ", feature, ": fixed bin width ", binning.width, " over the range [", lo, ", ",
+          hi, "] needs ", last - first, " bins, more than max_bins = ", binning.max_bins);
+      k = static_cast<Index>(last - first);
+      width = static_cast<Scalar>(binning.width);
+      lo_ = static_cast<Scalar>(binning.origin + first * binning.width);
+      hi_ = static_cast<Scalar>(binning.origin + last * binning.width);
+    } else {
+      lo_ = lo;
+      hi_ = hi;
+      if (hi_ > lo_) {
+        k = rule_bins(x, binning, lo_, hi_, scratch);
+        width = (hi_ - lo_) / static_cast<Scalar>(k);
+      }
     }
   }
   // Averaged shifted histograms count on a grid m times finer than the coarse bins.
@@ -286,19 +436,43 @@ void Histogram<Scalar>::place_equal_frequency_edges(const Scalar* sorted, Index 
 }
 
 template <class Scalar>
-template <class Column>
-void Histogram<Scalar>::count_and_score(const Column& values, const ScoringOptions& options) {
-  const Index n = values.size();
+void Histogram<Scalar>::count(const detail::ColumnView<Scalar>& x) {
+  const Index n = x.size;
   const auto k = static_cast<std::size_t>(edges_.size() - 1);
   counts_.assign(k, 0);
-  // Periodic values arrive as offsets wrap(x) into the period: exactly what lookup computes.
   if (periodic_) {
-    for (Index i = 0; i < n; ++i) ++counts_[static_cast<std::size_t>(uniform_bin(values.coeff(i)))];
-  } else {
-    for (Index i = 0; i < n; ++i)
-      ++counts_[static_cast<std::size_t>(in_range_bin(values.coeff(i)))];
+    // Periodic values arrive as offsets wrap(x) into the period: exactly what lookup computes.
+    for (Index i = 0; i < n; ++i) ++counts_[static_cast<std::size_t>(uniform_bin(x[i]))];
+    return;
   }
+  if (!uniform_ || !(inv_width_ > Scalar(0))) {
+    for (Index i = 0; i < n; ++i) ++counts_[static_cast<std::size_t>(in_range_bin(x[i]))];
+    return;
+  }
+  // Every value lies in [lo, hi] here. Four interleaved sub-histograms: consecutive values in
+  // the same bin increment different counters, so the increments do not serialise.
+  sub_counts_.assign(4 * k, 0);
+  std::uint32_t* sub = sub_counts_.data();
+  const Scalar lo = lo_, inv = inv_width_;
+  const auto last = static_cast<std::size_t>(k - 1);
+  auto bin = [&](Scalar v) { return std::min(static_cast<std::size_t>((v - lo) * inv), last); };
+  detail::with_access(x, [&](auto at) {
+    const Index n4 = n - n % 4;
+    for (Index i = 0; i < n4; i += 4) {
+      ++sub[4 * bin(at(i))];
+      ++sub[4 * bin(at(i + 1)) + 1];
+      ++sub[4 * bin(at(i + 2)) + 2];
+      ++sub[4 * bin(at(i + 3)) + 3];
+    }
+    for (Index i = n4; i < n; ++i) ++sub[4 * bin(at(i))];
+  });
+  for (std::size_t b = 0; b < k; ++b)
+    counts_[b] = static_cast<Index>(sub[4 * b]) + sub[4 * b + 1] + sub[4 * b + 2] + sub[4 * b + 3];
+}
 
+template <class Scalar>
+void Histogram<Scalar>::score_bins(Index n, const ScoringOptions& options) {
+  const auto k = counts_.size();
   contribution_.resize(k);
   const bool constant = !periodic_ && !(hi_ > lo_);
   if (constant) {
@@ -328,14 +502,14 @@ void Histogram<Scalar>::count_and_score(const Column& values, const ScoringOptio
       }
       contribution_[static_cast<std::size_t>(i)] = static_cast<Scalar>(mass);
     }
-    // Heights h_i = mass_i / width_i, in double; only ratios to h_max matter. An empty
-    // neighbourhood counts as `empty_bin_count` samples.
     // Uniform bins share one nominal width: using it (not edge differences, which carry the
     // rounding of lo + j * width) keeps heights exactly proportional to mass, and scores exactly
     // invariant under affine maps of the feature.
     auto width_of = [&](std::size_t i) {
       return uniform_ ? 1.0 : static_cast<double>(edges_[i + 1]) - static_cast<double>(edges_[i]);
     };
+    // Heights h_i = mass_i / width_i, in double; only ratios to h_max matter. An empty
+    // neighbourhood counts as `empty_bin_count` samples.
     auto height = [&](std::size_t i, bool regularise) {
       const double w = width_of(i);
       const double mass = static_cast<double>(contribution_[i]);
@@ -382,59 +556,54 @@ void Histogram<Scalar>::count_and_score(const Column& values, const ScoringOptio
 }
 
 template <class Scalar>
-template <class Column>
-void Histogram<Scalar>::refit(const Column& column, const FeatureSpec& spec,
-                              const ScoringOptions& options, std::vector<Scalar>& scratch,
-                              Index feature) {
-  const Index n = column.size();
+void Histogram<Scalar>::refit_view(const detail::ColumnView<Scalar>& x, const FeatureSpec& spec,
+                                   const ScoringOptions& options, std::vector<Scalar>& scratch,
+                                   Index feature) {
+  const Index n = x.size;
   detail::require(n > 0, "feature ", feature, ": cannot fit a histogram to no samples");
   periodic_ = spec.periodic;
   tail_ = spec.tail;
   period_ = 0;
-  shifts_ = spec.binning.method == BinningMethod::EqualFrequency ? 1 : spec.binning.shifts;
-
-  const BinCountRule rule = spec.binning.rule;
   const bool equal_frequency = spec.binning.method == BinningMethod::EqualFrequency;
-  const bool needs_sorted =
-      equal_frequency ||
-      (spec.binning.method == BinningMethod::EqualWidth &&
-       (rule == BinCountRule::FreedmanDiaconis || rule == BinCountRule::BirgeRozenblac));
-  const bool needs_copy =
-      periodic_ || needs_sorted ||
-      (spec.binning.method == BinningMethod::EqualWidth && rule == BinCountRule::Scott);
-  if (!needs_copy) {
-    // The common case (equal or fixed width, a rule that needs only n): two passes over the
-    // caller's column, no copy.
+  shifts_ = equal_frequency ? 1 : spec.binning.shifts;
+
+  if (!periodic_ && !equal_frequency) {
+    // Equal or fixed width: the caller's column is read in place (min/max, then counting).
     uniform_ = true;
-    place_uniform_edges(column, spec, scratch, feature);
-    count_and_score(column, options);
+    place_uniform_edges(x, spec, scratch, feature);
+    count(x);
+    score_bins(n, options);
     return;
   }
 
-  // Otherwise the values, wrapped for periodic features, go to scratch: moments, quantiles,
-  // sorting and the counting pass read them from there.
-  scratch.resize(static_cast<std::size_t>(n));
-  for (Index i = 0; i < n; ++i) scratch[static_cast<std::size_t>(i)] = column.coeff(i);
+  // Periodic features are binned as offsets into the period and equal-frequency bins need the
+  // values sorted: both work on a copy in `scratch` (which may already hold the column).
+  detail::finite_min_max(x, feature);
+  if (x.data != scratch.data()) {
+    scratch.resize(static_cast<std::size_t>(n));
+    for (Index i = 0; i < n; ++i) scratch[static_cast<std::size_t>(i)] = x[i];
+  }
+  const detail::ColumnView<Scalar> values{scratch.data(), n, 1};
   if (periodic_) {
+    uniform_ = true;
     lo_ = static_cast<Scalar>(spec.period_start);
     period_ = static_cast<Scalar>(spec.period);
     for (auto& v : scratch) v = wrap(v);  // offsets into the period; every rule is shift-invariant
-  }
-  if (needs_sorted) std::sort(scratch.begin(), scratch.end());
-
-  const Eigen::Map<const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>> values(scratch.data(), n);
-  if (equal_frequency) {
+    place_uniform_edges(values, spec, scratch, feature);
+  } else {
     uniform_ = false;
     inv_width_ = 0;
+    std::sort(scratch.begin(), scratch.end());
     const Index k = scratch.front() < scratch.back()
                         ? rule_bins(values, spec.binning, scratch.front(), scratch.back(), scratch)
                         : 1;
+    // rule_bins may reorder scratch (Freedman–Diaconis selects in place): sort again if so.
+    if (spec.binning.rule == BinCountRule::FreedmanDiaconis)
+      std::sort(scratch.begin(), scratch.end());
     place_equal_frequency_edges(scratch.data(), n, k);
-  } else {
-    uniform_ = true;
-    place_uniform_edges(values, spec, scratch, feature);
   }
-  count_and_score(values, options);
+  count(values);
+  score_bins(n, options);
 }
 
 }  // namespace hbos

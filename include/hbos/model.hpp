@@ -16,6 +16,7 @@
 /// concurrently.
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -57,16 +58,6 @@ struct HbosParams {
 
 namespace detail {
 
-/// Throws naming the first non-finite entry; the vectorised allFinite() keeps the common case fast.
-template <class Derived>
-void require_finite(const Eigen::DenseBase<Derived>& x, const char* what) {
-  if (x.derived().allFinite()) return;
-  for (Eigen::Index j = 0; j < x.cols(); ++j)
-    for (Eigen::Index i = 0; i < x.rows(); ++i)
-      require(std::isfinite(x.derived().coeff(i, j)), what, "(", i, ", ", j, ") is not finite (",
-              x.derived().coeff(i, j), ")");
-}
-
 inline void validate(const HbosParams& params, Eigen::Index n_features) {
   require(
       params.features.empty() || static_cast<Eigen::Index>(params.features.size()) == n_features,
@@ -76,42 +67,42 @@ inline void validate(const HbosParams& params, Eigen::Index n_features) {
   for (Eigen::Index j = 0; j < n_features; ++j) validate(params.spec(j), j);
 }
 
-/// Fits `histograms` (resized to the column count) to `x`, reusing their storage.
+/// Fits `histograms` (resized to the column count) to `x`, reusing their storage. Non-finite
+/// values are caught by the fitting pass itself (no separate scan).
 template <class Scalar, class Derived>
 void fit_histograms(std::vector<Histogram<Scalar>>& histograms, const Eigen::DenseBase<Derived>& x,
                     const HbosParams& params, std::vector<Scalar>& scratch) {
   require(x.rows() > 0, "cannot fit to an empty data set (0 rows)");
   require(x.cols() > 0, "cannot fit to data with no features (0 columns)");
   validate(params, x.cols());
-  require_finite(x, "X");
   histograms.resize(static_cast<std::size_t>(x.cols()));
   for (Eigen::Index j = 0; j < x.cols(); ++j)
     histograms[static_cast<std::size_t>(j)].refit(x.derived().col(j), params.spec(j),
                                                   params.scoring, scratch, j);
 }
 
-/// Writes each row's contribution of feature j into column j of `out` (n x d).
-template <class Scalar, class Derived, class Out>
-void write_contributions(const std::vector<Histogram<Scalar>>& histograms,
-                         const Eigen::DenseBase<Derived>& x, Eigen::DenseBase<Out>& out) {
-  for (Eigen::Index j = 0; j < x.cols(); ++j) {
-    const Histogram<Scalar>& h = histograms[static_cast<std::size_t>(j)];
-    const auto column = x.derived().col(j);
-    for (Eigen::Index i = 0; i < x.rows(); ++i)
-      out.derived().coeffRef(i, j) = h.contribution(column.coeff(i));
-  }
-}
-
-/// Writes each row's score (the sum over features) into `out` (n).
-template <class Scalar, class Derived, class Out>
+/// Scores every row of `x` into `scores` (n) and, when `contributions` is not null, each
+/// feature's contribution into column j of the column-major n x d array it points to.
+/// Non-finite values throw, naming X(i, j). `storage` holds columns without direct access.
+template <class Scalar, class Derived>
 void write_scores(const std::vector<Histogram<Scalar>>& histograms,
-                  const Eigen::DenseBase<Derived>& x, Eigen::DenseBase<Out>& out) {
-  out.derived().setZero();
+                  const Eigen::DenseBase<Derived>& x, Scalar* scores, Scalar* contributions,
+                  std::vector<Scalar>& storage) {
+  const Eigen::Index n = x.rows();
   for (Eigen::Index j = 0; j < x.cols(); ++j) {
     const Histogram<Scalar>& h = histograms[static_cast<std::size_t>(j)];
-    const auto column = x.derived().col(j);
-    for (Eigen::Index i = 0; i < x.rows(); ++i)
-      out.derived().coeffRef(i) += h.contribution(column.coeff(i));
+    const ColumnView<Scalar> column = view_of(x.derived().col(j), storage);
+    if (contributions == nullptr) {
+      h.contributions_into(column, scores, j > 0, j);
+      continue;
+    }
+    Scalar* c = contributions + j * n;
+    h.contributions_into(column, c, false, j);
+    if (j == 0) {
+      std::copy(c, c + n, scores);
+    } else {
+      for (Eigen::Index i = 0; i < n; ++i) scores[i] += c[i];
+    }
   }
 }
 
@@ -138,6 +129,7 @@ class Hbos {
     Hbos model;
     std::vector<Scalar> scratch;
     detail::fit_histograms(model.histograms_, x, params, scratch);
+    for (auto& h : model.histograms_) h.release_fit_buffers();
     model.params_ = params;
     model.n_samples_ = x.rows();
     return model;
@@ -155,7 +147,8 @@ class Hbos {
   [[nodiscard]] Vector score(const Eigen::DenseBase<Derived>& x) const {
     check_input(x);
     Vector out(x.rows());
-    detail::write_scores(histograms_, x, out);
+    std::vector<Scalar> storage;
+    detail::write_scores(histograms_, x, out.data(), static_cast<Scalar*>(nullptr), storage);
     return out;
   }
 
@@ -166,12 +159,13 @@ class Hbos {
   }
 
   /// Scores into a caller-provided vector of x.rows() entries (no allocation).
-  template <class Derived, class Out>
-  void score_into(const Eigen::DenseBase<Derived>& x, Eigen::DenseBase<Out>& out) const {
+  template <class Derived>
+  void score_into(const Eigen::DenseBase<Derived>& x, Eigen::Ref<Vector> out) const {
     check_input(x);
     detail::require(out.size() == x.rows(), "score output has ", out.size(), " entries for ",
                     x.rows(), " rows");
-    detail::write_scores(histograms_, x, out);
+    std::vector<Scalar> storage;  // used only by expressions without direct access
+    detail::write_scores(histograms_, x, out.data(), static_cast<Scalar*>(nullptr), storage);
   }
 
   /// Per-feature contributions, n x d; each row sums to that row's score.
@@ -179,7 +173,9 @@ class Hbos {
   [[nodiscard]] Matrix contributions(const Eigen::DenseBase<Derived>& x) const {
     check_input(x);
     Matrix out(x.rows(), x.cols());
-    detail::write_contributions(histograms_, x, out);
+    Vector scores(x.rows());
+    std::vector<Scalar> storage;
+    detail::write_scores(histograms_, x, scores.data(), out.data(), storage);
     return out;
   }
 
@@ -202,7 +198,6 @@ class Hbos {
                   "the data's scalar type must match the model's (Hbos<float> or Hbos<double>)");
     detail::require(x.cols() == n_features(), "the model was fitted on ", n_features(),
                     " features but the data to score has ", x.cols(), " columns");
-    detail::require_finite(x, "X");
   }
 
   std::vector<Histogram<Scalar>> histograms_;

@@ -9,8 +9,8 @@
 ///  2. Counts: N_k = #{e_k <= x < e_{k+1}}, the last bin closed.
 ///  3. Densities: h_k = (N_k / (e_{k+1} - e_k)) / n.
 ///  4. Bin count B: the user's integer, or with `auto_bins` PyOD's Birgé–Rozenblac variant
-///     (argmax over b = 1..floor(sqrt n) - 1 of sum_k [N_k ln(b N_k / n + 1) - (b - 1 + (ln b)^2.5)],
-///     the penalty inside the sum), chosen per feature; it may be 1.
+///     (argmax over b = 1..floor(sqrt n) - 1 of sum_k [N_k ln(b N_k / n + 1) - (b - 1 + (ln
+///     b)^2.5)], the penalty inside the sum), chosen per feature; it may be 1.
 ///  5. Per value, with d = numpy.digitize(x, e, right=True) = #{k : e_k < x}:
 ///     1 <= d <= B uses log2(h_{d-1} + alpha), i.e. the bin (e_{d-1}, e_d];
 ///     below e_0 it uses bin 0 if e_0 - x <= (e_1 - e_0) tol, above e_B bin B-1 if
@@ -51,10 +51,10 @@ namespace hbos {
 
 /// PyOD's `HBOS(n_bins, alpha, tol, contamination)`. Defaults are PyOD's.
 struct PyodParams {
-  Eigen::Index n_bins = 10;    ///< bins per feature (PyOD's integer `n_bins`), > 2
-  bool auto_bins = false;      ///< PyOD's `n_bins="auto"`: Birgé–Rozenblac per feature, needs n > 3
-  double alpha = 0.1;          ///< added to each density before log2, in (0, 1) [1/feature-unit]
-  double tol = 0.5;            ///< how far outside the range still uses the edge bin, in (0, 1) [bins]
+  Eigen::Index n_bins = 10;  ///< bins per feature (PyOD's integer `n_bins`), > 2
+  bool auto_bins = false;  ///< PyOD's `n_bins="auto"`: Birgé–Rozenblac per feature, needs n > 3
+  double alpha = 0.1;      ///< added to each density before log2, in (0, 1) [1/feature-unit]
+  double tol = 0.5;        ///< how far outside the range still uses the edge bin, in (0, 1) [bins]
   double contamination = 0.1;  ///< share of training samples labelled outliers, in (0, 0.5]
 };
 
@@ -96,8 +96,8 @@ struct StridedView {
 template <class Derived, class F>
 decltype(auto) with_strided_view(const Eigen::DenseBase<Derived>& X, F&& f) {
   using Scalar = typename Derived::Scalar;
-  if constexpr ((static_cast<unsigned>(Eigen::DenseBase<Derived>::Flags) & Eigen::DirectAccessBit) !=
-                0) {
+  if constexpr ((static_cast<unsigned>(Eigen::DenseBase<Derived>::Flags) &
+                 Eigen::DirectAccessBit) != 0) {
     const Derived& x = X.derived();
     return std::forward<F>(f)(
         StridedView<Scalar>{x.data(), x.rows(), x.cols(), x.rowStride(), x.colStride()});
@@ -281,16 +281,15 @@ class PyodHbos {
     Eigen::Index sparsest = 0;  // first k with log_terms[k] == log_min
     double tol_below = 0.0;     // (e_1 - e_0) * tol
     double tol_above = 0.0;     // (e_B - e_{B-1}) * tol
-    double cell_scale = 0.0;    // cells / (e_B - e_0)
+    double cell_scale = 0.0;    // nominal cell count / (e_B - e_0)
     Eigen::Index cells = 1;
     std::vector<Cell> grid;
 
     [[nodiscard]] Eigen::Index bins() const { return densities.size(); }
 
-    /// Cell of x in [lo, hi]; monotone in x.
+    /// Cell of x in [lo, hi]: in [0, cells), since it is monotone in x and cells = cell(hi) + 1.
     [[nodiscard]] Eigen::Index cell(double x) const {
-      const auto c = static_cast<Eigen::Index>((x - lo) * cell_scale);
-      return c < cells ? c : cells - 1;
+      return static_cast<Eigen::Index>((x - lo) * cell_scale);
     }
 
     [[nodiscard]] Eigen::Index digitize(double x) const {
@@ -328,8 +327,7 @@ class PyodHbos {
 
   /// Smallest and largest value of a column (NaN ignored; the counting pass catches it).
   [[nodiscard]] static std::pair<double, double> column_range(const Scalar* column,
-                                                              Eigen::Index stride,
-                                                              Eigen::Index n) {
+                                                              Eigen::Index stride, Eigen::Index n) {
     // Two independent chains per extreme (min/max are exact in any order); plain locals so that
     // they stay in registers.
     double lo0 = static_cast<double>(column[0]);
@@ -365,35 +363,41 @@ class PyodHbos {
     PyodHbos model;
     model.params_ = params;
     model.features_.reserve(static_cast<std::size_t>(X.cols));
-    // The bin each training value is scored with, from the counting pass, for the scoring pass.
-    std::vector<std::uint32_t> scored_bins(static_cast<std::size_t>(n * X.cols));
+    // The bin each training value is scored with, from the counting pass, for the scoring pass
+    // (16 bits: beyond 65536 bins the training values are scored like new data instead).
+    std::vector<std::uint16_t> scored_bins(static_cast<std::size_t>(n * X.cols));
+    bool bins_stored = true;
     detail::AutoBinsScratch<Scalar> scratch;
     for (Eigen::Index j = 0; j < X.cols; ++j) {
       const Scalar* column = X.data + j * X.col_stride;
       const auto [lo, hi] = column_range(column, X.row_stride, n);
       if (!std::isfinite(lo) || !std::isfinite(hi)) detail::require_finite_entry(X, "X");
       const Eigen::Index B =
-          params.auto_bins
-              ? detail::pyod_optimal_bins(column, X.row_stride, n, lo, hi, scratch)
-              : params.n_bins;
-      model.features_.push_back(
-          fit_feature(column, X.row_stride, n, j, B, lo, hi, params, scored_bins.data() + j * n));
+          params.auto_bins ? detail::pyod_optimal_bins(column, X.row_stride, n, lo, hi, scratch)
+                           : params.n_bins;
+      bins_stored = bins_stored && B <= kMaxStoredBins;
+      model.features_.push_back(fit_feature(column, X.row_stride, n, j, B, lo, hi, params,
+                                            bins_stored ? scored_bins.data() + j * n : nullptr));
     }
-    model.scores_.resize(n);
-    model.sum_rows(
-        n,
-        [&](Eigen::Index j, Eigen::Index first, Eigen::Index m, double* dst, auto add) {
-          const double* log_terms = model.features_[static_cast<std::size_t>(j)].log_terms.data();
-          const std::uint32_t* bin = scored_bins.data() + j * n + first;
-          for (Eigen::Index r = 0; r < m; ++r) {
-            if constexpr (decltype(add)::value) {
-              dst[r] += log_terms[bin[r]];
-            } else {
-              dst[r] = log_terms[bin[r]];
+    if (!bins_stored) {
+      model.scores_ = model.score_view(X);
+    } else {
+      model.scores_.resize(n);
+      model.sum_rows(
+          n,
+          [&](Eigen::Index j, Eigen::Index first, Eigen::Index m, double* dst, auto add) {
+            const double* log_terms = model.features_[static_cast<std::size_t>(j)].log_terms.data();
+            const std::uint16_t* bin = scored_bins.data() + j * n + first;
+            for (Eigen::Index r = 0; r < m; ++r) {
+              if constexpr (decltype(add)::value) {
+                dst[r] += log_terms[bin[r]];
+              } else {
+                dst[r] = log_terms[bin[r]];
+              }
             }
-          }
-        },
-        model.scores_.data());
+          },
+          model.scores_.data());
+    }
     std::vector<Scalar> percentile_scratch;
     model.threshold_ =
         detail::pyod_threshold(model.scores_.data(), n, params.contamination, percentile_scratch);
@@ -401,14 +405,15 @@ class PyodHbos {
     return model;
   }
 
+  static constexpr Eigen::Index kMaxStoredBins = 65536;
+
   /// numpy.histogram(column, B, density=True) plus the scoring tables. Writes the bin each value
-  /// is scored with (which differs from the bin it is counted in for values on interior edges).
+  /// is scored with (which differs from the bin it is counted in for values on interior edges)
+  /// unless `scored_bins` is null.
   [[nodiscard]] static Feature fit_feature(const Scalar* column, Eigen::Index stride,
                                            Eigen::Index n, Eigen::Index j, Eigen::Index B,
                                            double min_value, double max_value,
-                                           const PyodParams& params, std::uint32_t* scored_bins) {
-    detail::require(B <= Eigen::Index{std::numeric_limits<std::uint32_t>::max()}, "feature ", j,
-                    ": ", B, " bins is more than this implementation supports");
+                                           const PyodParams& params, std::uint16_t* scored_bins) {
     const detail::OuterEdges range = detail::numpy_outer_edges(min_value, max_value);
     detail::require(std::isfinite(range.hi - range.lo), "feature ", j, ": its range [", range.lo,
                     ", ", range.hi, "] overflows a double");
@@ -425,21 +430,25 @@ class PyodHbos {
     f.hi = f.edges[B];
     f.norm = static_cast<double>(B) / (f.hi - f.lo);
 
-    // The grid: 64 cells per bin (at least 1024, at most 65536).
-    f.cells = std::min<Eigen::Index>(std::max<Eigen::Index>(1024, 64 * B), 65536);
-    f.cell_scale = static_cast<double>(f.cells) / (f.hi - f.lo);
-    if (!std::isfinite(f.cell_scale)) {  // a range of denormals: one cell, general path
-      f.cells = 1;
-      f.cell_scale = 0.0;
-    }
-    // Per cell: first_bin = #{interior edges in cells below} (the bin of a value below the cell's
-    // own edge) and how many interior edges the cell holds.
-    std::vector<Eigen::Index> first_bin(static_cast<std::size_t>(f.cells));
-    std::vector<Eigen::Index> edges_in(static_cast<std::size_t>(f.cells), 0);
-    for (Eigen::Index k = 1; k < B; ++k) ++edges_in[static_cast<std::size_t>(f.cell(f.edges[k]))];
+    // The grid: 64 cells per bin (at least 1024, at most 65536), plus the cell of e_B itself,
+    // which rounding may put one past the nominal count.
+    const Eigen::Index nominal_cells =
+        std::min<Eigen::Index>(std::max<Eigen::Index>(1024, 64 * B), 65536);
+    f.cell_scale = static_cast<double>(nominal_cells) / (f.hi - f.lo);
+    if (!std::isfinite(f.cell_scale)) f.cell_scale = 0.0;  // a range of denormals: one cell
+    f.cells = f.cell(f.hi) + 1;
+    // Per cell: the bin of a value below the cell's own edge (= #{interior edges in cells
+    // below}) and how many interior edges the cell holds.
+    struct CellBins {
+      Eigen::Index first_bin = 0;
+      Eigen::Index edges_in = 0;
+    };
+    std::vector<CellBins> cell_bins(static_cast<std::size_t>(f.cells));
+    for (Eigen::Index k = 1; k < B; ++k)
+      ++cell_bins[static_cast<std::size_t>(f.cell(f.edges[k]))].edges_in;
     for (Eigen::Index c = 0, below = 0; c < f.cells; ++c) {
-      first_bin[static_cast<std::size_t>(c)] = below;
-      below += edges_in[static_cast<std::size_t>(c)];
+      cell_bins[static_cast<std::size_t>(c)].first_bin = below;
+      below += cell_bins[static_cast<std::size_t>(c)].edges_in;
     }
 
     // Count (bin c: e_c <= x < e_{c+1}, last closed) and record the scored bin (PyOD's look-up:
@@ -452,19 +461,20 @@ class PyodHbos {
         ++non_finite;
         continue;
       }
-      const auto c = static_cast<std::size_t>(f.cell(x));
-      Eigen::Index counted = first_bin[c];
+      const CellBins cell = cell_bins[static_cast<std::size_t>(f.cell(x))];
+      Eigen::Index counted = cell.first_bin;
       Eigen::Index scored = counted;
-      if (edges_in[c] == 1) {
+      if (cell.edges_in == 1) {
         const double edge = f.edges[counted + 1];
         counted += edge <= x ? 1 : 0;
         scored += edge < x ? 1 : 0;
-      } else if (edges_in[c] > 1) {
-        counted = detail::count_bin(x, f.edges.data(), B, detail::bin_guess(x, f.lo, f.norm, B - 1));
+      } else if (cell.edges_in > 1) {
+        counted =
+            detail::count_bin(x, f.edges.data(), B, detail::bin_guess(x, f.lo, f.norm, B - 1));
         scored = std::max<Eigen::Index>(f.digitize(x), 1) - 1;
       }
       ++counts[static_cast<std::size_t>((i & 3) * B + counted)];
-      scored_bins[i] = static_cast<std::uint32_t>(scored);
+      if (scored_bins != nullptr) scored_bins[i] = static_cast<std::uint16_t>(scored);
     }
     for (Eigen::Index i = 0; non_finite > 0 && i < n; ++i) {
       detail::require(std::isfinite(column[i * stride]), "X(", i, ", ", j,
@@ -494,11 +504,11 @@ class PyodHbos {
     constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
     for (Eigen::Index c = 0; c < f.cells; ++c) {
       const auto uc = static_cast<std::size_t>(c);
-      const Eigen::Index bin = first_bin[uc];
+      const Eigen::Index bin = cell_bins[uc].first_bin;
       Cell& cell = f.grid[uc];
-      if (edges_in[uc] == 0) {
+      if (cell_bins[uc].edges_in == 0) {
         cell = {kInf, f.log_terms[bin], f.log_terms[bin]};
-      } else if (edges_in[uc] == 1) {
+      } else if (cell_bins[uc].edges_in == 1) {
         cell = {f.edges[bin + 1], f.log_terms[bin], f.log_terms[bin + 1]};
       } else {
         cell = {kInf, kNaN, kNaN};
@@ -553,15 +563,13 @@ class PyodHbos {
           const double lo = f.lo;
           const double hi = f.hi;
           const double scale = f.cell_scale;
-          const Eigen::Index last_cell = f.cells - 1;
           const Cell* grid = f.grid.data();
           Eigen::Index bad = 0;
           for (Eigen::Index r = 0; r < m; ++r) {
             const double v = static_cast<double>(x[r * stride]);
             double t;
             if (v >= lo && v <= hi) {
-              const auto c = static_cast<Eigen::Index>((v - lo) * scale);
-              const Cell& cell = grid[c < last_cell ? c : last_cell];
+              const Cell& cell = grid[static_cast<Eigen::Index>((v - lo) * scale)];
               t = v <= cell.edge ? cell.below : cell.above;
               if (std::isnan(t)) t = f.term_exact(v);
             } else {

@@ -12,14 +12,15 @@
 /// its keypoint (ORB-SLAM: sigma_i = 1.2^octave, so sigma_i^2 = 1.2^(2 octave) is the variance
 /// factor of its level) and a prior flag "on a dynamic mask" (from a detector or segmentation).
 ///
-/// Features derived from the residuals (see `compute_residual_features`):
-/// - magnitude m_i = |r_i - c| / sigma_i (whitened) or |r_i - c| (raw) [px or px/sigma], with c
-///   the dominant residual (see below) or 0;
-/// - direction a_i = atan2(r_y - c_y, r_x - c_x), a periodic angle in [-pi, pi) [rad].
+/// Features the screen derives from the residuals (screen.hpp):
+/// - magnitude m_i = |r_i - c(p_i)| / sigma_i (whitened) or |r_i - c(p_i)| (raw) [px/sigma or px];
+/// - direction a_i = atan2 of r_i - c(p_i), a periodic angle in [-pi, pi) [rad].
 ///
-/// The dominant residual c is the mode of the residual vectors, found by a weighted mean shift
-/// started at the coordinate-wise median: the coherent shift that the rough pose's error gives
-/// every static match. Subtracting it is what lets a screen run *before* pose optimisation.
+/// c(p) is the dominant residual field (`ResidualCenter`): the coherent residual that the rough
+/// pose's error gives every static match — constant (the mode of the residual vectors: a weighted
+/// mean shift started at the coordinate-wise median) or affine in the predicted pixel p (it also
+/// absorbs the roll and zoom of the pose error). Subtracting it is what lets a screen run *before*
+/// pose optimisation.
 ///
 /// Threading: `Matches` is a plain container; concurrent const access is safe.
 

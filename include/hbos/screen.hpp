@@ -6,9 +6,10 @@
 ///
 /// The HBOS strategy, per frame (n matches, F = the fit set: unflagged matches unless fewer than
 /// `min_fit_matches`, or all):
-///  1. r_i = observed_i - predicted_i [px]; c = dominant residual over F (residuals.hpp), or 0.
-///  2. m_i = |r_i - c| / sigma_i (or |r_i - c| unwhitened), clipped at `magnitude_clip`;
-///     a_i = atan2 of r_i - c when an angle feature is used.
+///  1. r_i = observed_i - predicted_i [px]; c(p) = the dominant residual field of F
+///     (residuals.hpp: constant or affine in the predicted pixel p), or 0.
+///  2. m_i = |r_i - c(p_i)| / sigma_i (or unwhitened), clipped at `magnitude_clip`;
+///     a_i = atan2 of r_i - c(p_i) when an angle feature is used.
 ///  3. One histogram per feature fitted on F (histogram.hpp): contribution
 ///     c_j(v) = log(h_max / h(bin of v)) (Goldstein & Dengel, eq. 1); Upper tail for m.
 ///  4. score_i = sum_j c_j (the paper's eq. 5 with natural logs).

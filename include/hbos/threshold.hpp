@@ -119,8 +119,7 @@ Scalar numpy_percentile_linear(Scalar* first, Scalar* last, double q) {
   const Scalar lo = first[i];
   const Scalar hi = *std::min_element(first + static_cast<std::ptrdiff_t>(i) + 1, last);
   const double g = v - static_cast<double>(i);
-  return static_cast<Scalar>(
-      numpy_lerp(static_cast<double>(lo), static_cast<double>(hi), g));
+  return static_cast<Scalar>(numpy_lerp(static_cast<double>(lo), static_cast<double>(hi), g));
 }
 
 /// Median of [first, last) (mean of the two middle values for an even count), reordering in place.

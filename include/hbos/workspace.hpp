@@ -61,6 +61,7 @@ class Workspace {
     scores_.reserve(n);
     grow_mask(n);
     scratch_.reserve(n);
+    storage_.reserve(n);
     threshold_scratch_.reserve(n);
     histograms_.resize(std::max(histograms_.size(), d));
     for (auto& h : histograms_) h.reserve(bins);
@@ -81,11 +82,8 @@ class Workspace {
     scores_.resize(n);
     grow_mask(n);
 
-    Eigen::Map<Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>> contributions(
-        contributions_.data(), rows_, cols_);
-    detail::write_contributions(histograms_, x, contributions);
-    Eigen::Map<Eigen::Matrix<Scalar, Eigen::Dynamic, 1>> scores(scores_.data(), rows_);
-    scores = contributions.rowwise().sum();
+    detail::write_scores(histograms_, x, scores_.data(), contributions_.data(), storage_);
+    const Eigen::Map<const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>> scores(scores_.data(), rows_);
 
     FrameSummary<Scalar> summary;
     summary.n_rows = rows_;
@@ -122,6 +120,7 @@ class Workspace {
   ThresholdRule rule_;
   std::vector<Histogram<Scalar>> histograms_;
   std::vector<Scalar> scratch_, threshold_scratch_, scores_, contributions_;
+  std::vector<Scalar> storage_;  // columns of expressions without direct access
   // Not std::vector<bool>: the mask must be addressable as bool[] for the Eigen map.
   std::unique_ptr<bool[]> inlier_;
   std::size_t inlier_capacity_ = 0;

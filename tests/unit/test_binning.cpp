@@ -26,16 +26,18 @@ Eigen::VectorXd linear_grid(Eigen::Index n) {
 }
 
 // Birgé–Rozenblac by brute force: every candidate histogram counted value by value with the
-// floor formula, no sorting, no binary search; `penalty_times_b` switches to PyOD's variant.
+// floor formula floor(u b), u = (v - lo) * (1 / (hi - lo)), no sorting, no binary search, and the
+// likelihood summed term by term; `penalty_times_b` switches to PyOD's variant.
 Eigen::Index brute_force_birge(const Eigen::VectorXd& x, bool penalty_times_b = false) {
   const double lo = x.minCoeff(), hi = x.maxCoeff();
+  const double inv_range = 1.0 / (hi - lo);
   const auto n = static_cast<double>(x.size());
   Eigen::Index best = 1;
   double best_l = -1e300;
   for (Eigen::Index b = 1; b <= static_cast<Eigen::Index>(std::sqrt(n)); ++b) {
     std::vector<double> counts(static_cast<std::size_t>(b), 0.0);
     for (double v : x) {
-      auto k = static_cast<Eigen::Index>((v - lo) / (hi - lo) * static_cast<double>(b));
+      auto k = static_cast<Eigen::Index>((v - lo) * inv_range * static_cast<double>(b));
       ++counts[static_cast<std::size_t>(std::min(k, b - 1))];
     }
     const double db = static_cast<double>(b);

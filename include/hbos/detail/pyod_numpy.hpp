@@ -80,7 +80,7 @@ inline void numpy_histogram_edges(const OuterEdges& range, Eigen::Index bins, do
 /// (numpy computes floor((x - lo) * bins / (hi - lo)) and corrects it by one bin against the edges;
 /// both agree unless bins are narrower than a few ULPs of the values, which pyod.hpp rejects.)
 [[nodiscard]] inline Eigen::Index count_bin(double x, const double* edges, Eigen::Index bins,
-                                           Eigen::Index c) {
+                                            Eigen::Index c) {
   while (c > 0 && x < edges[c]) --c;
   while (c < bins - 1 && edges[c + 1] <= x) ++c;
   return c;
@@ -89,7 +89,7 @@ inline void numpy_histogram_edges(const OuterEdges& range, Eigen::Index bins, do
 /// `numpy.digitize(x, edges, right=True)` = #{k : e_k < x} in [0, B+1] for non-decreasing edges
 /// (numpy's searchsorted, side="left"). `b` is a guess in [0, B+1], walked to the exact answer.
 [[nodiscard]] inline Eigen::Index digitize_right(double x, const double* edges, Eigen::Index bins,
-                                                Eigen::Index b) {
+                                                 Eigen::Index b) {
   while (b > 0 && !(edges[b - 1] < x)) --b;
   while (b <= bins && edges[b] < x) ++b;
   return b;
@@ -152,7 +152,8 @@ class BucketedColumn {
     // Pass 1: the coarse histogram.
     coarse_start_.assign(static_cast<std::size_t>(kCoarse + 1), 0);
     for (Eigen::Index i = 0; i < n; ++i) {
-      ++coarse_start_[static_cast<std::size_t>((cell(static_cast<double>(column[i * stride])) >> shift) + 1)];
+      ++coarse_start_[static_cast<std::size_t>(
+          (cell(static_cast<double>(column[i * stride])) >> shift) + 1)];
     }
     for (std::size_t k = 1; k < coarse_start_.size(); ++k) coarse_start_[k] += coarse_start_[k - 1];
 
@@ -161,7 +162,8 @@ class BucketedColumn {
     staged_.resize(size);
     for (Eigen::Index i = 0; i < n; ++i) {
       const Scalar x = column[i * stride];
-      staged_[static_cast<std::size_t>(cursor_[static_cast<std::size_t>(cell(static_cast<double>(x)) >> shift)]++)] = x;
+      staged_[static_cast<std::size_t>(
+          cursor_[static_cast<std::size_t>(cell(static_cast<double>(x)) >> shift)]++)] = x;
     }
 
     // Pass 3: inside each coarse cell, a counting sort by fine cell.
@@ -247,7 +249,8 @@ std::pair<Scalar, Scalar> select_adjacent(const Scalar* values, Eigen::Index n, 
   if (n >= 16 * kSample) {
     std::vector<Scalar> sample(static_cast<std::size_t>(kSample));
     const Eigen::Index stride = n / kSample;
-    for (Eigen::Index s = 0; s < kSample; ++s) sample[static_cast<std::size_t>(s)] = values[s * stride];
+    for (Eigen::Index s = 0; s < kSample; ++s)
+      sample[static_cast<std::size_t>(s)] = values[s * stride];
     std::sort(sample.begin(), sample.end());
     // +-4 standard deviations of the sample rank: a miss (and its fallback) is very rare.
     const Eigen::Index centre = static_cast<Eigen::Index>(
@@ -307,7 +310,8 @@ struct AutoBinsScratch {
 
 /// PyOD's `get_optimal_n_bins` (Birgé–Rozenblac as PyOD writes it) for one column:
 ///
-///     L(b) = sum_{k<b} [ N_k ln(b N_k / n + 1) - (b - 1 + (ln b)^2.5) ],   b = 1 .. floor(sqrt(n)) - 1
+///     L(b) = sum_{k<b} [ N_k ln(b N_k / n + 1) - (b - 1 + (ln b)^2.5) ],   b = 1 .. floor(sqrt(n))
+///     - 1
 ///
 /// with N_k the counts of numpy.histogram(x, b); returns the first argmax. The penalty sits inside
 /// the sum (so it is paid b times) and the `+ 1` is PyOD's epsilon. Each term is rounded as numpy
@@ -366,8 +370,7 @@ template <class Scalar>
     for (Eigen::Index k = 0; k < b; ++k) {
       // Bin k holds e_k <= x < e_{k+1}; the last bin is closed and ends at the maximum.
       const Eigen::Index next =
-          k + 1 == b ? n
-                     : std::max(previous, scratch.below[static_cast<std::size_t>(row(b) + k)]);
+          k + 1 == b ? n : std::max(previous, scratch.below[static_cast<std::size_t>(row(b) + k)]);
       const Eigen::Index count = next - previous;
       previous = next;
       // 0 * ln(0 / n + 1) is exactly 0, so the log can be skipped for empty bins.
