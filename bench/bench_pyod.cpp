@@ -34,8 +34,8 @@ const Eigen::MatrixXd& standard_normal() {
 
 void set_counters(benchmark::State& state, double pyod_seconds) {
   state.SetItemsProcessed(state.iterations() * kRows * kCols);
-  state.counters["x_pyod"] = benchmark::Counter(pyod_seconds * static_cast<double>(state.iterations()),
-                                                benchmark::Counter::kIsRate);
+  state.counters["x_pyod"] = benchmark::Counter(
+      pyod_seconds * static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
 }
 
 /// PyOD's `HBOS().fit(X)` then `decision_function(X)`, as in its published timing.

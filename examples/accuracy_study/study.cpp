@@ -145,7 +145,7 @@ Eigen::MatrixXd rescale_power_of_two(const Eigen::MatrixXd& x, std::uint64_t see
   std::mt19937_64 rng(seed);
   Eigen::MatrixXd out(x.rows(), x.cols());
   for (Eigen::Index j = 0; j < x.cols(); ++j) {
-    out.col(j) = x.col(j) * std::ldexp(1.0, static_cast<int>(uniform_int(rng, -10, 10)));
+    out.col(j) = x.col(j) * std::ldexp(1.0, static_cast<int>(uniform_int(rng, -9, 9)));
   }
   return out;
 }

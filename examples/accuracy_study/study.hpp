@@ -5,6 +5,7 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <cstdio>
 #include <functional>
 #include <string>
 #include <vector>
@@ -39,7 +40,7 @@ struct Method {
 /// PyOD mode, the scale test of both, then a few other binnings with and without shifts.
 [[nodiscard]] std::vector<Method> study_methods();
 
-/// Every column multiplied by its own factor 2^k, k uniform in {-10, ..., 10} (so the factor lies
+/// Every column multiplied by its own factor 2^k, k uniform in {-9, ..., 9} (so the factor lies
 /// in [1e-3, 1e3]), drawn from mt19937_64 seeded with `seed`. Multiplying by a power of two is
 /// exact in floating point, so every value keeps its bin: a scale-invariant model must give
 /// bit-identical scores, and any change is a real scale dependence (PyOD's alpha).
@@ -50,8 +51,8 @@ struct Method {
 /// ..., 9.99}, k uniform in {-3, ..., 2}, so the factor lies in [1e-3, 1e3]): a change of units
 /// and origin. The results are rounded, so values that lie exactly on a bin edge (common for
 /// discretised features) may change sides: mathematically invariant models may move slightly.
-/// Only IEEE-exact operations on integers and literals are used, so the data are the same on
-/// every platform.
+/// Only correctly rounded IEEE operations on integers and literals are used (no pow or exp), so
+/// the data are the same on every platform.
 [[nodiscard]] Eigen::MatrixXd change_units(const Eigen::MatrixXd& x, std::uint64_t seed);
 
 /// ROC-AUC per data set (rows) and method (columns).

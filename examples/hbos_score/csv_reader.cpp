@@ -227,13 +227,27 @@ class Parser {
         throw std::invalid_argument(source_ + ": label column: " + e.what());
       }
     }
+    ignored_.assign(n_columns, false);
+    for (const std::string& selector : options_.ignore_columns) {
+      std::size_t j = 0;
+      try {
+        j = select_column(selector, table.column_names);
+      } catch (const std::invalid_argument& e) {
+        throw std::invalid_argument(source_ + ": ignored column: " + e.what());
+      }
+      if (table.label_column == j) {
+        throw std::invalid_argument(source_ + ": column \"" + table.column_names[j] +
+                                    "\" cannot be both the label column and ignored");
+      }
+      ignored_[j] = true;
+      table.ignored_columns.push_back(j);
+    }
     for (std::size_t j = 0; j < n_columns; ++j) {
-      if (table.label_column != j) table.feature_columns.push_back(j);
+      if (table.label_column != j && !ignored_[j]) table.feature_columns.push_back(j);
     }
     if (table.feature_columns.empty()) {
       throw CsvError(source_, line_no, 1,
-                     "no feature columns: the only column is the label column \"" +
-                         table.column_names[0] + "\"");
+                     "no feature columns left (every column is the label column or ignored)");
     }
     n_columns_ = n_columns;
     first_line_ = line_no;
@@ -250,6 +264,7 @@ class Parser {
                          std::to_string(first_line_) + " has " + std::to_string(n_columns_));
     }
     for (std::size_t j = 0; j < n_columns_; ++j) {
+      if (ignored_[j]) continue;  // e.g. an ID column: not even required to be a number
       const Cell& cell = cells_[j];
       double value = 0.0;
       const NumberStatus status =
@@ -311,6 +326,7 @@ class Parser {
   const std::string& source_;
   const CsvOptions& options_;
   std::vector<Cell> cells_;
+  std::vector<bool> ignored_;  // per column of the file
   std::size_t line_length_ = 0;
   std::size_t n_columns_ = 0;
   std::size_t first_line_ = 0;

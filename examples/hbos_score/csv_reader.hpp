@@ -10,8 +10,8 @@
 ///   of its cells is not a number; a header made only of numbers (`0,1,2`) must be requested
 ///   with `HeaderMode::Present`.
 /// - Spaces and tabs around a cell are ignored (tabs only when the delimiter is not a tab). Any
-/// cell may be double-quoted (RFC 4180, `""`
-///   for a quote inside); a quoted cell may not span lines.
+///   cell may be double-quoted (RFC 4180, `""` for a quote inside); a quoted cell may not span
+///   lines. A quoted data cell must still hold a number.
 /// - Data cells are decimal floating-point numbers as `std::from_chars` reads them (`1`, `-2.5`,
 ///   `3e-7`, `.5`; a leading `+` is accepted too). Values too small for a double read as 0 or a
 ///   subnormal, as strtod does.
@@ -22,8 +22,9 @@
 /// double, a blank line between rows, an unterminated quote. Columns count bytes from 1, as
 /// compilers do, and point at the start of the cell.
 ///
-/// An optional label column (0/1 ground truth, 1 = outlier) is split off the features, so the
-/// feature matrix holds only what the model should see.
+/// An optional label column (0/1 ground truth, 1 = outlier) is split off the features and
+/// optional ignored columns (IDs) are skipped, so the feature matrix holds only what the model
+/// should see.
 
 #include <Eigen/Core>
 #include <cstddef>
@@ -49,6 +50,9 @@ struct CsvOptions {
   /// The column holding 0/1 ground-truth labels (1 = outlier), removed from the features: a
   /// column name, a 0-based index, or `last`. Empty: no label column.
   std::string label_column{};
+  /// Columns to skip entirely (IDs, timestamps, an index column written by pandas), as
+  /// selectors like `label_column`; their cells need not be numbers.
+  std::vector<std::string> ignore_columns{};
 };
 
 /// A numeric table read from CSV.
@@ -62,6 +66,8 @@ struct CsvTable {
   std::vector<std::size_t> feature_columns;
   /// Index of the label column among `column_names`, if one was requested.
   std::optional<std::size_t> label_column;
+  /// Indices of the ignored columns among `column_names`, in the order they were requested.
+  std::vector<std::size_t> ignored_columns;
   /// The labels (0 or 1, 1 = outlier), one per row; empty without a label column.
   Eigen::VectorXi labels;
   /// The line each row was read from (1-based), for messages about rows.
@@ -102,8 +108,8 @@ class CsvError : public std::runtime_error {
 };
 
 /// Parses CSV text. `source` names the input in error messages.
-/// \throws CsvError on malformed input; std::invalid_argument when `options.label_column` names
-///         no column or `options.delimiter` is unusable.
+/// \throws CsvError on malformed input; std::invalid_argument when `options.label_column` or
+///         `options.ignore_columns` name no column, or `options.delimiter` is unusable.
 [[nodiscard]] CsvTable parse_csv(std::string_view text, const std::string& source,
                                  const CsvOptions& options = {});
 

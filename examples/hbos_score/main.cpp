@@ -97,9 +97,8 @@ int main(int argc, char** argv) {
       "hbos-score"};
   app.footer(
       "Examples:\n"
-      "  hbos-score data.csv --label-column label            # default mode, ROC-AUC vs labels\n"
-      "  hbos-score data.csv --mode pyod -o scores.csv       # PyOD 3.6.5's HBOS, number for "
-      "number\n"
+      "  hbos-score data.csv --label-column label   # default mode, ROC-AUC vs labels\n"
+      "  hbos-score data.csv --mode pyod -o out.csv # PyOD 3.6.5's HBOS, number for number\n"
       "  hbos-score - --bins sturges --threshold mad:3 < data.csv\n"
       "Exit codes: 0 success; 2 bad options, malformed CSV (file:line:column) or rejected data; "
       "1 other failures (e.g. the output cannot be written).\n");
@@ -123,6 +122,12 @@ int main(int argc, char** argv) {
                  "0/1 ground-truth column (1 = outlier), left out of the features; also prints the "
                  "ROC-AUC of the scores against it. A name, a 0-based index or last")
       ->type_name("NAME|INDEX");
+
+  std::string ignore_columns;
+  auto* ignore = app.add_option("--ignore-columns", ignore_columns,
+                                "comma-separated columns to skip (IDs, an index column); their "
+                                "cells need not be numbers")
+                     ->type_name("LIST");
 
   std::string mode = "default";
   app.add_option("--mode", mode,
@@ -181,6 +186,7 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
     if (header->count() > 0) options.csv.header = HeaderMode::Present;
+    if (ignore->count() > 0) options.csv.ignore_columns = split_list(ignore_columns);
     if (no_header->count() > 0) options.csv.header = HeaderMode::Absent;
     if (delimiter->count() > 0) options.csv.delimiter = parse_delimiter(raw.delimiter);
     options.mode = lower(mode) == "pyod" ? Mode::Pyod : Mode::Default;

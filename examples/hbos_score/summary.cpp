@@ -23,8 +23,16 @@ std::string describe_input(const ScoreOptions& options, const CsvTable& table) {
                  : "no header";
   }
   std::string label;
-  if (table.label_column)
+  if (table.label_column) {
     label = fmt::format("; label column \"{}\" excluded", table.column_names[*table.label_column]);
+  }
+  if (!table.ignored_columns.empty()) {
+    label += "; ignored:";
+    for (std::size_t k = 0; k < table.ignored_columns.size(); ++k) {
+      label +=
+          fmt::format("{} \"{}\"", k > 0 ? "," : "", table.column_names[table.ignored_columns[k]]);
+    }
+  }
   return fmt::format("{}: {} rows x {} features ({}{})\n", source, table.rows(),
                      table.features.cols(), header, label);
 }
@@ -106,11 +114,11 @@ std::string format_summary(const ScoreOptions& options, const CsvTable& table,
                            const ScoredTable& scored) {
   std::string out = describe_input(options, table);
   if (table.has_header && !table.numeric_header_cells.empty()) {
+    // The header is always the first line (a blank line before it is an error).
     out += fmt::format(
-        "warning: line {} was taken as a header although {} of its cells look numeric; pass "
-        "--header "
-        "or --no-header to decide\n",
-        table.row_lines.front() - 1, table.numeric_header_cells.size());
+        "warning: the first line was taken as a header although {} of its cells look numeric; "
+        "pass --header or --no-header to decide\n",
+        table.numeric_header_cells.size());
   }
   out += "model: " + scored.model + "\n";
   out += "bins per feature: " + describe_bins(table, scored.bins) + "\n";

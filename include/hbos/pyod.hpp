@@ -122,6 +122,14 @@ inline void validate(const PyodParams& p) {
           "PyodParams::contamination must lie in (0, 0.5], got ", p.contamination);
 }
 
+/// Calls f(stride) with a compile-time 1 when the stride is 1 (a column of a column-major
+/// matrix), so that the hot loops index contiguously; otherwise with the runtime stride.
+template <class F>
+decltype(auto) with_stride(Eigen::Index stride, F&& f) {
+  if (stride == 1) return std::forward<F>(f)(std::integral_constant<Eigen::Index, 1>{});
+  return std::forward<F>(f)(stride);
+}
+
 template <class Scalar>
 void require_finite_entry(const StridedView<Scalar>& X, const char* what) {
   for (Eigen::Index j = 0; j < X.cols; ++j) {
@@ -326,8 +334,9 @@ class PyodHbos {
   }
 
   /// Smallest and largest value of a column (NaN ignored; the counting pass catches it).
-  [[nodiscard]] static std::pair<double, double> column_range(const Scalar* column,
-                                                              Eigen::Index stride, Eigen::Index n) {
+  template <class Stride>
+  [[nodiscard]] static std::pair<double, double> column_range(const Scalar* column, Stride stride,
+                                                              Eigen::Index n) {
     // Two independent chains per extreme (min/max are exact in any order); plain locals so that
     // they stay in registers.
     double lo0 = static_cast<double>(column[0]);
@@ -370,7 +379,8 @@ class PyodHbos {
     detail::AutoBinsScratch<Scalar> scratch;
     for (Eigen::Index j = 0; j < X.cols; ++j) {
       const Scalar* column = X.data + j * X.col_stride;
-      const auto [lo, hi] = column_range(column, X.row_stride, n);
+      const auto [lo, hi] = detail::with_stride(
+          X.row_stride, [&](auto stride) { return column_range(column, stride, n); });
       if (!std::isfinite(lo) || !std::isfinite(hi)) detail::require_finite_entry(X, "X");
       const Eigen::Index B =
           params.auto_bins ? detail::pyod_optimal_bins(column, X.row_stride, n, lo, hi, scratch)
@@ -452,14 +462,14 @@ class PyodHbos {
     }
 
     // Count (bin c: e_c <= x < e_{c+1}, last closed) and record the scored bin (PyOD's look-up:
-    // e_{s} < x <= e_{s+1}, the minimum in bin 0). Four count arrays break the increment chains.
+    // e_{s} < x <= e_{s+1}, the minimum in bin 0). Four count arrays, used in turn, break the
+    // chains of increments of one counter.
     std::vector<Eigen::Index> counts(static_cast<std::size_t>(4 * B), 0);
     Eigen::Index non_finite = 0;
-    for (Eigen::Index i = 0; i < n; ++i) {
-      const double x = static_cast<double>(column[i * stride]);
-      if (!(x >= f.lo && x <= f.hi)) {  // only NaN can be outside [min, max]
+    auto count_one = [&](double x, Eigen::Index* count, std::uint16_t* scored_bin, auto store) {
+      if (std::isnan(x)) {  // the only value outside [min, max]
         ++non_finite;
-        continue;
+        return;
       }
       const CellBins cell = cell_bins[static_cast<std::size_t>(f.cell(x))];
       Eigen::Index counted = cell.first_bin;
@@ -473,9 +483,32 @@ class PyodHbos {
             detail::count_bin(x, f.edges.data(), B, detail::bin_guess(x, f.lo, f.norm, B - 1));
         scored = std::max<Eigen::Index>(f.digitize(x), 1) - 1;
       }
-      ++counts[static_cast<std::size_t>((i & 3) * B + counted)];
-      if (scored_bins != nullptr) scored_bins[i] = static_cast<std::uint16_t>(scored);
-    }
+      ++count[counted];
+      if constexpr (decltype(store)::value) *scored_bin = static_cast<std::uint16_t>(scored);
+    };
+    auto count_all = [&](auto step, auto store) {
+      Eigen::Index* c0 = counts.data();
+      Eigen::Index* c1 = c0 + B;
+      Eigen::Index* c2 = c1 + B;
+      Eigen::Index* c3 = c2 + B;
+      std::uint16_t* out = scored_bins;
+      auto at = [&](Eigen::Index i) { return static_cast<double>(column[i * step]); };
+      Eigen::Index i = 0;
+      for (; i + 4 <= n; i += 4) {
+        count_one(at(i), c0, out + i, store);
+        count_one(at(i + 1), c1, out + i + 1, store);
+        count_one(at(i + 2), c2, out + i + 2, store);
+        count_one(at(i + 3), c3, out + i + 3, store);
+      }
+      for (; i < n; ++i) count_one(at(i), c0, out + i, store);
+    };
+    detail::with_stride(stride, [&](auto step) {
+      if (scored_bins != nullptr) {
+        count_all(step, std::true_type{});
+      } else {
+        count_all(step, std::false_type{});
+      }
+    });
     for (Eigen::Index i = 0; non_finite > 0 && i < n; ++i) {
       detail::require(std::isfinite(column[i * stride]), "X(", i, ", ", j,
                       ") is not finite: ", column[i * stride]);
@@ -558,31 +591,32 @@ class PyodHbos {
         [&](Eigen::Index j, Eigen::Index first, Eigen::Index m, double* dst, auto add) {
           const Feature& f = features_[static_cast<std::size_t>(j)];
           const Scalar* x = X.data + first * X.row_stride + j * X.col_stride;
-          const Eigen::Index stride = X.row_stride;
           // Locals, so that the stores to dst cannot force reloads.
           const double lo = f.lo;
           const double hi = f.hi;
           const double scale = f.cell_scale;
           const Cell* grid = f.grid.data();
-          Eigen::Index bad = 0;
-          for (Eigen::Index r = 0; r < m; ++r) {
-            const double v = static_cast<double>(x[r * stride]);
-            double t;
-            if (v >= lo && v <= hi) {
-              const Cell& cell = grid[static_cast<Eigen::Index>((v - lo) * scale)];
-              t = v <= cell.edge ? cell.below : cell.above;
-              if (std::isnan(t)) t = f.term_exact(v);
-            } else {
-              bad += std::isfinite(v) ? 0 : 1;
-              t = f.term_exact(v);
+          non_finite += detail::with_stride(X.row_stride, [&](auto stride) {
+            Eigen::Index bad = 0;
+            for (Eigen::Index r = 0; r < m; ++r) {
+              const double v = static_cast<double>(x[r * stride]);
+              double t;
+              if (v >= lo && v <= hi) {
+                const Cell& cell = grid[static_cast<Eigen::Index>((v - lo) * scale)];
+                t = v <= cell.edge ? cell.below : cell.above;
+                if (std::isnan(t)) t = f.term_exact(v);
+              } else {
+                bad += std::isfinite(v) ? 0 : 1;
+                t = f.term_exact(v);
+              }
+              if constexpr (decltype(add)::value) {
+                dst[r] += t;
+              } else {
+                dst[r] = t;
+              }
             }
-            if constexpr (decltype(add)::value) {
-              dst[r] += t;
-            } else {
-              dst[r] = t;
-            }
-          }
-          non_finite += bad;
+            return bad;
+          });
         },
         scores.data());
     if (non_finite > 0) detail::require_finite_entry(X, "X");

@@ -179,8 +179,33 @@ TEST_CASE("the label column is split off the features", "[csv]") {
                         Catch::Contains("is used by columns 0 and 1"));
   }
   SECTION("the label cannot be the only column") {
-    require_error("label\n1\n", 1, 1, "no feature columns", with_label("label"));
+    require_error("label\n1\n", 1, 1, "no feature columns left", with_label("label"));
   }
+}
+
+TEST_CASE("ignored columns are skipped without being parsed", "[csv]") {
+  CsvOptions options = with_label("y");
+  options.ignore_columns = {"id", "3"};
+  const CsvTable t = parse("id,a,y,when,b\nrow-1,1,0,monday,2\n\"row,2\",3,1,,4\n", options);
+  CHECK(t.ignored_columns == std::vector<std::size_t>{0, 3});
+  CHECK(t.feature_columns == std::vector<std::size_t>{1, 4});
+  REQUIRE(t.features.rows() == 2);
+  CHECK(t.features(1, 0) == 3.0);
+  CHECK(t.features(1, 1) == 4.0);
+  CHECK(t.labels == Eigen::Vector2i(0, 1));
+  // A ragged row is still an error, ignored columns or not.
+  CsvOptions id_only;
+  id_only.ignore_columns = {"id"};
+  require_error("id,a\nx,1\ny\n", 3, 2, "row has 1 cells but line 1 has 2", id_only);
+
+  options.ignore_columns = {"zz"};
+  REQUIRE_THROWS_WITH(parse("id,a,y\n1,2,0\n", options),
+                      Catch::Contains("ignored column: no column is named \"zz\""));
+  options.ignore_columns = {"y"};
+  REQUIRE_THROWS_WITH(parse("id,a,y\n1,2,0\n", options),
+                      Catch::Contains("\"y\" cannot be both the label column and ignored"));
+  options.ignore_columns = {"id", "a"};
+  require_error("id,a,y\n1,2,0\n", 1, 1, "no feature columns left", options);
 }
 
 TEST_CASE("malformed input is reported at its line and column", "[csv][errors]") {

@@ -211,6 +211,44 @@ TEST_CASE("hbos-score: other binnings, periodic columns, tails and thresholds ru
   CHECK_THAT(frequency.err, Catch::Contains("model: default: equal-frequency, 4 bins, tail both"));
 }
 
+TEST_CASE("hbos-score: ignored columns do not change the scores", "[cli][hbos_score]") {
+  // good.csv with an ID column in front, as pandas writes its index.
+  const fs::path input = work_dir() / "with_id.csv";
+  {
+    std::ifstream in(kData + "/good.csv");
+    std::ofstream out(input);
+    std::string line;
+    for (int i = 0; std::getline(in, line); ++i)
+      out << (i == 0 ? "id" : "sample-" + std::to_string(i)) << ',' << line << '\n';
+  }
+  const Run with_id =
+      hbos_score("with_id", {input.string(), "--ignore-columns", "id", "--label-column", "label"});
+  const Run plain =
+      hbos_score("without_id", {kData + "/good.csv", "--label-column", "label", "-q"});
+  INFO(with_id.err);
+  REQUIRE(with_id.exit_code == 0);
+  REQUIRE(plain.exit_code == 0);
+  CHECK(with_id.out == plain.out);
+  CHECK_THAT(
+      with_id.err,
+      Catch::Contains("60 rows x 3 features (header detected; label column \"label\" excluded; "
+                      "ignored: \"id\")"));
+}
+
+TEST_CASE("hbos-score: a header with numeric-looking names is flagged", "[cli][hbos_score]") {
+  const fs::path input = work_dir() / "numeric_header.csv";
+  { std::ofstream(input) << "speed,2020,2021\n1,2,3\n4,5,6\n7,8,9\n"; }
+  const Run run = hbos_score("numeric_header", {input.string()});
+  REQUIRE(run.exit_code == 0);
+  CHECK_THAT(run.err, Catch::Contains("3 rows x 3 features (header detected)"));
+  CHECK_THAT(run.err,
+             Catch::Contains("warning: the first line was taken as a header although 2 of its "
+                             "cells look numeric; pass --header or --no-header to decide"));
+  const Run forced = hbos_score("numeric_header_forced", {input.string(), "--header"});
+  REQUIRE(forced.exit_code == 0);
+  CHECK_THAT(forced.err, !Catch::Contains("warning"));
+}
+
 TEST_CASE("hbos-score: malformed CSV exits 2 with file:line:column", "[cli][hbos_score][errors]") {
   struct Case {
     std::string file;

@@ -24,7 +24,8 @@ using Eigen::Index;
 using RowMajorMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 
 const std::string kDataDir = std::string(HBOS_TEST_DATA_DIR) + "/hbos_pyod/";
-const std::vector<std::string> kDatasets = {"cardio", "pima", "glass", "lympho", "vertebral", "wbc"};
+const std::vector<std::string> kDatasets = {"cardio", "pima",      "glass",
+                                            "lympho", "vertebral", "wbc"};
 
 struct Tag {
   std::string name;
@@ -120,8 +121,8 @@ double max_rel_deviation(const Eigen::VectorXd& computed, const Eigen::VectorXd&
   REQUIRE(computed.size() == reference.size());
   double worst = 0.0;
   for (Index i = 0; i < computed.size(); ++i) {
-    worst = std::max(worst, std::abs(computed[i] - reference[i]) /
-                                std::max(1.0, std::abs(reference[i])));
+    worst = std::max(worst,
+                     std::abs(computed[i] - reference[i]) / std::max(1.0, std::abs(reference[i])));
   }
   return worst;
 }
@@ -250,9 +251,8 @@ TEST_CASE("pyod: every ODDS set and parameter tag reproduces PyOD 3.6.5", "[pyod
       CHECK(model.predict(X) == model.labels());
 
       // Branch choices: the same number of values take each scoring branch as in PyOD.
-      for (const auto& [section, data] :
-           {std::make_pair(std::string("branches_train"), &X),
-            std::make_pair(std::string("branches_test"), &X_test)}) {
+      for (const auto& [section, data] : {std::make_pair(std::string("branches_train"), &X),
+                                          std::make_pair(std::string("branches_test"), &X_test)}) {
         for (const auto& [key, count] : branch_counts(model, *data)) {
           INFO(section << "." << key);
           CHECK(count == meta_count(meta, tag.name, section, key));
@@ -326,12 +326,14 @@ TEST_CASE("pyod: scoring and counting equal the edge-by-edge definition", "[pyod
   Eigen::MatrixXd X(n, 3);
   for (Index i = 0; i < n; ++i) {
     X(i, 0) = normal(rng);
-    X(i, 1) = integer(rng);                                // on interior edges for many B
-    X(i, 2) = std::exp(3.0 * normal(rng));                 // heavy right tail
+    X(i, 1) = integer(rng);                 // on interior edges for many B
+    X(i, 2) = std::exp(3.0 * normal(rng));  // heavy right tail
   }
   Eigen::MatrixXd X_new = X * 1.3;
   X_new.col(1).array() -= 3.0;
-  for (const Index bins : {Index{3}, Index{10}, Index{40}, Index{2000}, Index{40000}}) {
+  // 40000 bins: cells hold several edges; 70000: training values are scored like new data.
+  for (const Index bins :
+       {Index{3}, Index{10}, Index{40}, Index{2000}, Index{40000}, Index{70000}}) {
     INFO("n_bins " << bins);
     hbos::PyodParams params;
     params.n_bins = bins;
@@ -346,6 +348,7 @@ TEST_CASE("pyod: scoring and counting equal the edge-by-edge definition", "[pyod
       }
       CHECK(model.counts(j) == expected);
     }
+    CHECK(model.decision_function(X) == model.decision_scores());
     for (const Eigen::MatrixXd* data : {&X, &X_new}) {
       const Eigen::VectorXd scores = model.decision_function(*data);
       Index mismatches = 0;
@@ -371,9 +374,9 @@ TEST_CASE("pyod: the sampled percentile equals numpy's, ties and adversarial ord
   for (auto& x : v) x = std::round(3.0 * normal(rng));  // ~20 distinct values, heavy ties
   inputs.push_back(v);
   std::sort(v.begin(), v.end());
-  inputs.push_back(v);                                  // sorted
+  inputs.push_back(v);  // sorted
   std::reverse(v.begin(), v.end());
-  inputs.push_back(v);                                  // reversed
+  inputs.push_back(v);                                    // reversed
   inputs.emplace_back(static_cast<std::size_t>(n), 2.5);  // constant
   // Adversarial for the sample (every (n / 4096)-th value): sampled values all 0, the rest not.
   const Index stride = n / 4096;
@@ -395,8 +398,7 @@ TEST_CASE("pyod: the sampled percentile equals numpy's, ties and adversarial ord
   }
 }
 
-TEST_CASE("pyod: the bucketed column counts exactly, whatever the distribution",
-          "[pyod][detail]") {
+TEST_CASE("pyod: the bucketed column counts exactly, whatever the distribution", "[pyod][detail]") {
   std::mt19937_64 rng(13);
   std::normal_distribution<double> normal;
   std::uniform_real_distribution<double> uniform(0.0, 1.0);
@@ -405,8 +407,8 @@ TEST_CASE("pyod: the bucketed column counts exactly, whatever the distribution",
   for (Index i = 0; i < n; ++i) {
     const auto u = static_cast<std::size_t>(i);
     columns[0][u] = normal(rng);
-    columns[1][u] = std::floor(4.0 * normal(rng));           // ties
-    columns[2][u] = 1.0 / (uniform(rng) + 1e-12) - 1.0;      // one cell holds almost everything
+    columns[1][u] = std::floor(4.0 * normal(rng));             // ties
+    columns[2][u] = 1.0 / (uniform(rng) + 1e-12) - 1.0;        // one cell holds almost everything
     columns[3][u] = i % 1000 == 0 ? 1e6 : normal(rng) * 1e-3;  // a far group and a tight one
   }
   hbos::detail::BucketedColumn<double> bucketed;
@@ -419,7 +421,7 @@ TEST_CASE("pyod: the bucketed column counts exactly, whatever the distribution",
     std::sort(sorted.begin(), sorted.end());
     std::vector<double> queries = {*lo - 1.0, *lo, *hi, *hi + 1.0, 0.0, -0.0};
     for (Index q = 0; q < 2000; ++q) {
-      queries.push_back(col[static_cast<std::size_t>(q * 7)]);                // values themselves
+      queries.push_back(col[static_cast<std::size_t>(q * 7)]);                 // values themselves
       queries.push_back(*lo + (*hi - *lo) * static_cast<double>(q) / 2000.0);  // a grid
       queries.push_back(std::nextafter(col[static_cast<std::size_t>(q * 11)], -1e300));
     }
@@ -456,7 +458,8 @@ TEST_CASE("pyod: auto bins equal a direct evaluation of PyOD's formula", "[pyod]
           }
         }
       }
-      const double penalty = static_cast<double>(b - 1) + std::pow(std::log(static_cast<double>(b)), 2.5);
+      const double penalty =
+          static_cast<double>(b - 1) + std::pow(std::log(static_cast<double>(b)), 2.5);
       std::vector<double> terms;
       for (const Index c : count) {
         const double w = static_cast<double>(c) *
@@ -554,7 +557,8 @@ TEST_CASE("pyod: a float model is the double model of the same values", "[pyod]"
     }
     // Scores are the double scores rounded once to float.
     CHECK(mf.decision_scores() == md.decision_scores().cast<float>());
-    CHECK(mf.decision_function(Xf_new) == md.decision_function(Xf_new.cast<double>()).cast<float>());
+    CHECK(mf.decision_function(Xf_new) ==
+          md.decision_function(Xf_new.cast<double>()).cast<float>());
     CHECK(mf.threshold() == Approx(md.threshold()).epsilon(1e-6));
     CHECK(mf.labels() == md.labels());
   }
@@ -562,9 +566,9 @@ TEST_CASE("pyod: a float model is the double model of the same values", "[pyod]"
 
 TEST_CASE("pyod: bad input throws InvalidArgument naming the problem", "[pyod]") {
   const Eigen::MatrixXd X = standard_normal(50, 2, 3);
+  using Catch::Matchers::Contains;
   using hbos::InvalidArgument;
   using hbos::PyodHbosd;
-  using Catch::Matchers::Contains;
 
   SECTION("PyOD's parameter checks") {
     auto with = [](auto change) {
@@ -590,7 +594,8 @@ TEST_CASE("pyod: bad input throws InvalidArgument naming the problem", "[pyod]")
                         Contains("n_bins must be > 2") && Contains(std::to_string(bins)));
     }
     CHECK_NOTHROW(PyodHbosd::fit(X, with([](auto& p) { p.n_bins = 3; })));
-    // With auto_bins the integer is not used, so it is not checked (PyOD's n_bins is one or the other).
+    // With auto_bins the integer is not used, so it is not checked (PyOD's n_bins is one or the
+    // other).
     CHECK_NOTHROW(PyodHbosd::fit(X, with([](auto& p) {
                                    p.auto_bins = true;
                                    p.n_bins = 0;
@@ -600,7 +605,8 @@ TEST_CASE("pyod: bad input throws InvalidArgument naming the problem", "[pyod]")
   SECTION("auto bins need more than 3 samples") {
     hbos::PyodParams p;
     p.auto_bins = true;
-    CHECK_THROWS_WITH(PyodHbosd::fit(X.topRows(3), p), Contains("more than 3 samples") && Contains("got 3"));
+    CHECK_THROWS_WITH(PyodHbosd::fit(X.topRows(3), p),
+                      Contains("more than 3 samples") && Contains("got 3"));
     const auto model = PyodHbosd::fit(X.topRows(4), p);
     CHECK(model.bins(0) == 1);  // sqrt(4) = 2: only b = 1 is searched
   }
@@ -638,7 +644,8 @@ TEST_CASE("pyod: bad input throws InvalidArgument naming the problem", "[pyod]")
   SECTION("bins narrower than the floating-point resolution (PyOD would score NaN)") {
     Eigen::MatrixXd tiny(4, 1);
     tiny << 1e16, 1e16, 1e16 + 2.0, 1e16 + 2.0;  // 10 bins of width 0.2 collapse onto 2 doubles
-    CHECK_THROWS_WITH(PyodHbosd::fit(tiny), Contains("narrower than the floating-point resolution"));
+    CHECK_THROWS_WITH(PyodHbosd::fit(tiny),
+                      Contains("narrower than the floating-point resolution"));
     const Eigen::MatrixXd huge = (Eigen::MatrixXd(2, 1) << -1e308, 1e308).finished();
     CHECK_THROWS_WITH(PyodHbosd::fit(huge), Contains("overflows a double"));
   }
@@ -674,7 +681,9 @@ TEST_CASE("pyod defect 1: a value on an interior edge is scored with the bin bel
   REQUIRE(model.bin_edges(0) == (Eigen::VectorXd(6) << 0, 1, 2, 3, 4, 5).finished());
   CHECK(model.counts(0) == (hbos::PyodHbosd::Counts(5) << 40, 1, 60, 50, 49).finished());
 
-  auto score_of = [&](double v) { return model.decision_function(Eigen::MatrixXd::Constant(1, 1, v))[0]; };
+  auto score_of = [&](double v) {
+    return model.decision_function(Eigen::MatrixXd::Constant(1, 1, v))[0];
+  };
   const hbos::PyodLookup rare = model.lookup(0, 1.0);
   CHECK(rare.on_interior_edge);
   CHECK(rare.bin == 0);  // the rare value borrows the density of the 40 zeros
@@ -686,13 +695,26 @@ TEST_CASE("pyod defect 1: a value on an interior edge is scored with the bin bel
   CHECK(score_of(2.0) == Approx(3.251538766995964).epsilon(1e-12));   // -log2(1/200 + 0.1)
   CHECK(score_of(1.0) < score_of(2.0));
   CHECK(model.decision_scores().maxCoeff() == score_of(2.0));
+  // The 60 twos (30 % of the data) share that top score, so the 90th percentile is that score
+  // and no sample is labelled an outlier.
+  CHECK(model.threshold() == score_of(2.0));
+  CHECK(model.labels().sum() == 0);
   // The count bin of the same value would have given the opposite ranking.
   CHECK(-std::log2(model.densities(0)[1] + 0.1) > -std::log2(model.densities(0)[2] + 0.1));
 
-  // On real data: cardio's integer-valued features put 1069 training values on interior edges at
-  // B = 10 (meta.json), every one of them scored with its neighbour bin.
+  // On real data: cardio puts 1069 training values exactly on interior edges at B = 10
+  // (meta.json), each scored with its neighbour bin. Whether a value hits an edge exactly is a
+  // matter of the last bits: rescaling by 1 + 1e-12 leaves 206 on edges, and ROC-AUC moves by
+  // 0.014, far more than any real change of 1e-12 could justify.
   const Eigen::MatrixXd cardio = read_csv_matrix(kDataDir + "cardio/X.csv");
-  CHECK(branch_counts(hbos::PyodHbosd::fit(cardio), cardio)[1].second == 1069);
+  const Eigen::VectorXd y = read_vector(kDataDir + "cardio/y.csv");
+  const auto as_published = hbos::PyodHbosd::fit(cardio);
+  CHECK(branch_counts(as_published, cardio)[1].second == 1069);
+  CHECK(roc_auc(as_published.decision_scores(), y) == Approx(0.83772658610271911).epsilon(1e-12));
+  const Eigen::MatrixXd nudged = cardio * (1.0 + 1e-12);
+  const auto nudged_model = hbos::PyodHbosd::fit(nudged);
+  CHECK(branch_counts(nudged_model, nudged)[1].second == 206);
+  CHECK(roc_auc(nudged_model.decision_scores(), y) == Approx(0.85164446580609721).epsilon(1e-12));
 }
 
 TEST_CASE("pyod defect 2: alpha makes the scores depend on each feature's units",
@@ -722,4 +744,34 @@ TEST_CASE("pyod defect 2: alpha makes the scores depend on each feature's units"
     discordant += ((a[i] - a[i + 1]) * (b[i] - b[i + 1]) < 0.0) ? 1 : 0;
   }
   CHECK(discordant > a.size() / 10);
+}
+
+TEST_CASE("pyod: the migration snippet of docs/pyod_compat.md", "[pyod][docs]") {
+  const Eigen::MatrixXd X_train = read_csv_matrix(kDataDir + "pima/X.csv");
+  const Eigen::MatrixXd X_test = read_csv_matrix(kDataDir + "pima/X_test.csv");
+  // [pyod-migration]
+  // Python: clf = HBOS(n_bins=20, alpha=0.01, tol=0.2, contamination=0.1).fit(X_train)
+  hbos::PyodParams params;  // defaults are PyOD's: n_bins 10, alpha 0.1, tol 0.5, contamination 0.1
+  params.n_bins = 20;       // n_bins="auto" is params.auto_bins = true
+  params.alpha = 0.01;
+  params.tol = 0.2;
+  params.contamination = 0.1;
+  const auto clf = hbos::PyodHbosd::fit(X_train, params);
+  const Eigen::VectorXd& train_scores = clf.decision_scores();  // clf.decision_scores_
+  const double threshold = clf.threshold();                     // clf.threshold_
+  const Eigen::VectorXi& train_labels = clf.labels();           // clf.labels_
+  const Eigen::VectorXd test_scores =
+      clf.decision_function(X_test);                        // clf.decision_function(X_test)
+  const Eigen::VectorXi test_labels = clf.predict(X_test);  // clf.predict(X_test)
+  const Eigen::VectorXd& edges_0 = clf.bin_edges(0);        // clf.bin_edges_[:, 0]
+  const Eigen::VectorXd& hist_0 = clf.densities(0);         // clf.hist_[:, 0]
+  // [pyod-migration]
+  const std::string dir = kDataDir + "pima/";
+  CHECK(train_scores == read_vector(dir + "scores_nb20_a0.01_tol0.2.csv"));
+  CHECK(threshold == read_vector(dir + "threshold_nb20_a0.01_tol0.2.txt")[0]);
+  CHECK(train_labels == read_vector(dir + "labels_nb20_a0.01_tol0.2.csv").cast<int>());
+  CHECK(test_scores == read_vector(dir + "test_scores_nb20_a0.01_tol0.2.csv"));
+  CHECK(test_labels == (test_scores.array() > threshold).cast<int>().matrix());
+  CHECK(edges_0.size() == 21);
+  CHECK(hist_0.size() == 20);
 }

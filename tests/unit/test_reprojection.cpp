@@ -514,7 +514,8 @@ void screen_matches(Frame& frame, hbos::ReprojectionScreend& screen, hbos::Match
     if (mp == nullptr) continue;
     const Eigen::Vector3d p_c = frame.T_cw * mp->world_pos;
     if (p_c.z() <= 0) continue;
-    matches.add(camera.project(p_c), frame.keys[i].pt, hbos::sigma_from_octave(frame.keys[i].octave));
+    matches.add(camera.project(p_c), frame.keys[i].pt,
+                hbos::sigma_from_octave(frame.keys[i].octave));
     index.push_back(i);
   }
   if (matches.empty()) return;

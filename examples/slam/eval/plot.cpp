@@ -68,6 +68,8 @@ double nice_step(double span, int target) {
 std::string tick_label(double value, double step) {
   const int decimals = std::max(0, -static_cast<int>(std::floor(std::log10(step) + 1e-9)));
   if (std::abs(value) < 1e-6 * step) value = 0.0;  // no "-0.00"
+  // Sub-micrometre ticks only occur for (near-)perfect estimates; keep their labels short.
+  if (decimals > 6) return fmt::format("{:.1e}", value);
   return fmt::format("{:.{}f}", value, decimals);
 }
 
@@ -88,10 +90,11 @@ void put_vertical_text(cv::Mat& image, const std::string& text, cv::Point centre
   put_text(patch, text, {2, size.height + 2}, kTextScale, kBlack);
   cv::Mat rotated;
   cv::rotate(patch, rotated, cv::ROTATE_90_COUNTERCLOCKWISE);
-  cv::Rect target(centre.x - rotated.cols / 2, centre.y - rotated.rows / 2, rotated.cols,
-                  rotated.rows);
-  target &= cv::Rect(0, 0, image.cols, image.rows);
-  rotated(cv::Rect(0, 0, target.width, target.height)).copyTo(image(target));
+  const cv::Rect wanted(centre.x - rotated.cols / 2, centre.y - rotated.rows / 2, rotated.cols,
+                        rotated.rows);
+  const cv::Rect target = wanted & cv::Rect(0, 0, image.cols, image.rows);
+  if (target.empty()) return;  // entirely outside the image: nothing to draw
+  rotated(cv::Rect(target.tl() - wanted.tl(), target.size())).copyTo(image(target));
 }
 
 void draw_dashed_line(cv::Mat& image, cv::Point a, cv::Point b, const cv::Scalar& colour) {

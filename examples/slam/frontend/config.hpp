@@ -73,7 +73,9 @@ enum class RoughPoseMethod {
 
 struct RoughPoseConfig {
   RoughPoseMethod method = RoughPoseMethod::kRansac;
-  double ransac_threshold_px = 2.0;  ///< [px] inlier threshold of the minimal-set consensus
+  /// [px] inlier threshold of the consensus: tight (about 2 sigma of level-0 keypoint noise) so
+  /// that a moving person cannot join it (FINDINGS.md point 4; measured in docs/slam_demo.md)
+  double ransac_threshold_px = 1.0;
   int ransac_iterations = 300;
   double ransac_confidence = 0.999;
   int min_inliers = 12;  ///< fewer RANSAC inliers: fall back to constant velocity

@@ -1,6 +1,6 @@
 #include "frontend/dataset.hpp"
 
-#include "eval/associate.hpp"
+#include "eval/rpe.hpp"
 #include "eval/trajectory_io.hpp"
 
 #include <fmt/format.h>
@@ -66,15 +66,16 @@ RgbdSequence load_tum_sequence(const std::string& folder, double max_difference)
   const std::vector<ListedImage> rgb = read_image_list((fs::path(folder) / "rgb.txt").string());
   const std::vector<ListedImage> depth = read_image_list((fs::path(folder) / "depth.txt").string());
 
-  std::vector<double> rgb_stamps, depth_stamps;
-  for (const auto& r : rgb) rgb_stamps.push_back(r.stamp);
+  std::vector<double> depth_stamps;
   for (const auto& d : depth) depth_stamps.push_back(d.stamp);
-  AssociationParams params;
-  params.max_difference = max_difference;
-  // associate() returns pairs sorted by its first list's stamps: colour order.
-  for (const Match& m : associate(rgb_stamps, depth_stamps, params)) {
-    sequence.frames.push_back(
-        {rgb[static_cast<std::size_t>(m.gt)], depth[static_cast<std::size_t>(m.est)]});
+  // Each colour image takes the depth image nearest in time. (associate.py's greedy one-to-one
+  // matching would pair 32 of the embedded 37 fr1 frames, not 36: the depth stream runs ~15 ms
+  // ahead, so a colour image's successor depth is often only ~18 ms away and gets taken.)
+  for (const ListedImage& r : rgb) {
+    const auto nearest = static_cast<std::size_t>(find_closest_index(depth_stamps, r.stamp));
+    if (std::abs(depth[nearest].stamp - r.stamp) < max_difference) {
+      sequence.frames.push_back({r, depth[nearest]});
+    }
   }
   sequence.unpaired_rgb = static_cast<Eigen::Index>(rgb.size() - sequence.frames.size());
   if (sequence.frames.empty()) {

@@ -1,7 +1,7 @@
 #pragma once
 /// \file
 /// A TUM RGB-D sequence on disk: `rgb.txt` and `depth.txt` (`timestamp filename` per line,
-/// `#` comments), associated by nearest stamp as the benchmark's associate.py does, and the
+/// `#` comments), each colour image paired with the depth image nearest in time, and the
 /// optional `groundtruth.txt`. Every error names the file and line.
 
 #include "eval/trajectory.hpp"
@@ -42,8 +42,9 @@ struct RgbdSequence {
   [[nodiscard]] std::vector<double> rgb_stamps() const;
 };
 
-/// Loads the lists (and ground truth, if present) of the sequence in `folder`. Colour images are
-/// paired with depth images one-to-one, nearest stamps first, within `max_difference` seconds.
+/// Loads the lists (and ground truth, if present) of the sequence in `folder`. Each colour image
+/// is paired with the depth image nearest in time when they are less than `max_difference`
+/// seconds apart; colour images without such a depth image are skipped (counted in unpaired_rgb).
 /// Throws hbos::InvalidArgument when a list is missing or malformed or no pair is found.
 [[nodiscard]] RgbdSequence load_tum_sequence(const std::string& folder,
                                              double max_difference = 0.02);

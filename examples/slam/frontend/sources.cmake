@@ -8,9 +8,11 @@ endif()
 
 set(_hbos_frontend_dir ${CMAKE_CURRENT_LIST_DIR})
 target_sources(hbos_slam PRIVATE
+  ${_hbos_frontend_dir}/ablation.cpp
   ${_hbos_frontend_dir}/camera.cpp
   ${_hbos_frontend_dir}/config.cpp
   ${_hbos_frontend_dir}/dataset.cpp
+  ${_hbos_frontend_dir}/figures.cpp
   ${_hbos_frontend_dir}/frame_matching.cpp
   ${_hbos_frontend_dir}/frame_source.cpp
   ${_hbos_frontend_dir}/orb_extraction.cpp
@@ -20,11 +22,18 @@ target_sources(hbos_slam PRIVATE
   ${_hbos_frontend_dir}/pose_refiner.cpp
   ${_hbos_frontend_dir}/residual_screen.cpp
   ${_hbos_frontend_dir}/rough_pose.cpp
+  ${_hbos_frontend_dir}/run_outputs.cpp
+  ${_hbos_frontend_dir}/sequence_run.cpp
+  ${_hbos_frontend_dir}/slam_command.cpp
   ${_hbos_frontend_dir}/tracker.cpp)
 
 # The embedded data (examples/slam/data): the default input of hbos-slam and the tests' input.
 get_filename_component(_hbos_slam_data_dir ${_hbos_frontend_dir}/../data ABSOLUTE)
 target_compile_definitions(hbos_slam PUBLIC HBOS_SLAM_DATA_DIR="${_hbos_slam_data_dir}")
+
+add_executable(hbos-slam ${_hbos_frontend_dir}/hbos_slam.cpp)
+target_link_libraries(hbos-slam PRIVATE hbos_slam)
+hbos_set_warnings(hbos-slam)
 
 # Regenerates examples/slam/data from ../shared (see the SOURCE.md files there).
 add_executable(hbos-slam-prepare-data ${_hbos_frontend_dir}/prepare_data.cpp)

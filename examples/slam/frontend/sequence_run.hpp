@@ -1,0 +1,74 @@
+#pragma once
+/// \file
+/// Running the tracker over a sequence, and what a run measured: the trajectory, per-frame
+/// statistics, their totals, and the ATE/RPE against ground truth (through the evaluator in
+/// eval/, called from trajectory_evaluation.cpp only).
+
+#include "eval/evaluate.hpp"
+#include "eval/trajectory.hpp"
+#include "frontend/camera.hpp"
+#include "frontend/config.hpp"
+#include "frontend/frame.hpp"
+#include "frontend/tracker.hpp"
+
+#include <Eigen/Geometry>
+
+#include <functional>
+#include <iosfwd>
+#include <optional>
+#include <vector>
+
+namespace hbos::slam {
+
+/// Totals over a run's frames.
+struct RunTotals {
+  int frames = 0;
+  int frames_tracked = 0;          ///< frames with enough matches for a pose
+  int frames_rough_ransac = 0;     ///< frames whose rough pose came from RANSAC
+  long matches = 0;
+  long person_matches = 0;
+  long person_survivors = 0;
+  long static_matches = 0;
+  long static_dropped = 0;
+  /// person_survivors / person_matches; nullopt without person matches.
+  std::optional<double> person_survival_share;
+  double static_loss_share = 0.0;  ///< static_dropped / static_matches
+  double mean_screen_us = 0.0;     ///< [us] per frame with a screen (frames after the first)
+  double mean_refine_us = 0.0;     ///< [us] per frame
+};
+
+[[nodiscard]] RunTotals total_of(const std::vector<FrameStats>& stats);
+
+/// The frame shown in the figures: its images and what the tracker decided on it.
+struct FigureFrame {
+  Frame frame;
+  TrackResult result;
+};
+
+struct RunResult {
+  std::vector<double> stamps;                 ///< [s] one per frame
+  std::vector<Eigen::Isometry3d> poses;       ///< T_world_camera, the first frame = identity
+  std::vector<FrameStats> stats;
+  RunTotals totals;
+  std::optional<FigureFrame> figure;          ///< the frame chosen for the figures
+  std::optional<Evaluation> evaluation;       ///< when the sequence has ground truth
+};
+
+/// Tracks frames 0 .. n-1 given by `frame_at` with a fresh Tracker. The figure frame is
+/// `output.figure_frame`, or with -1 the one with the most person matches (else the middle one).
+/// With `progress`, one line per frame is written to it.
+[[nodiscard]] RunResult run_tracker(const std::function<Frame(int)>& frame_at, int n,
+                                    const Config& config, const CameraModel& camera,
+                                    std::ostream* progress);
+
+/// The ATE (SE(3)-aligned, as evaluate_ate.py) and the per-frame RPE (delta 1 frame) of the
+/// estimate against `groundtruth`; `frame_stamps` count the frames for the share tracked.
+/// Throws hbos::InvalidArgument when the two do not overlap.
+[[nodiscard]] Evaluation evaluate_trajectory(const Trajectory& groundtruth,
+                                             const Trajectory& estimate,
+                                             const std::vector<double>& frame_stamps);
+
+/// The run's estimate as a Trajectory named `name`.
+[[nodiscard]] Trajectory estimate_of(const RunResult& run, const std::string& name);
+
+}  // namespace hbos::slam

@@ -1,0 +1,215 @@
+#include "frontend/slam_command.hpp"
+
+#include "eval/atomic_file.hpp"
+#include "frontend/ablation.hpp"
+#include "frontend/camera.hpp"
+#include "frontend/config.hpp"
+#include "frontend/dataset.hpp"
+#include "frontend/frame_source.hpp"
+#include "frontend/residual_screen.hpp"
+#include "frontend/run_outputs.hpp"
+#include "frontend/sequence_run.hpp"
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+#include <hbos/error.hpp>
+
+#include <filesystem>
+#include <ostream>
+#include <stdexcept>
+#include <string>
+
+namespace hbos::slam {
+
+namespace {
+
+/// The embedded data, found next to the sources (examples/slam/data).
+std::string embedded(const char* relative) {
+  return (std::filesystem::path(HBOS_SLAM_DATA_DIR) / relative).string();
+}
+
+struct CommandOptions {
+  Config config;
+  std::string scenario = "person";
+  std::string mask = "degraded";
+  std::string rough_pose = "ransac";
+  bool quiet = false;
+  bool ablation = false;
+};
+
+void add_options(CLI::App& app, CommandOptions& o) {
+  Config& c = o.config;
+  app.add_option("--dataset", c.dataset.path, "TUM RGB-D folder (rgb.txt, depth.txt[, groundtruth.txt])")
+      ->capture_default_str();
+  app.add_option("--camera", c.dataset.camera,
+                 "intrinsics: preset tum1 | tum3, or a .yaml/.yml/.json file")
+      ->capture_default_str();
+  app.add_option("--frames", c.dataset.max_frames, "use only the first N frames (0 = all)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--scenario", o.scenario,
+                 "static: the sequence as recorded; person: a real person composited in")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"static", "person"}));
+  app.add_option("--person-dir", c.scenario.person_dir, "person cut-out (rgb.png, mask.png, depth.png)")
+      ->capture_default_str();
+  app.add_option("--person-depth", c.scenario.depth_m, "median depth of the person [m]")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  app.add_option("--person-start", c.scenario.start_x_px, "left edge of the person in frame 0 [px]")
+      ->capture_default_str();
+  app.add_option("--person-speed", c.scenario.speed_px_per_frame,
+                 "sideways motion of the person [px/frame]")
+      ->capture_default_str();
+  app.add_option("--mask", o.mask, "dynamic-object mask the features avoid")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"none", "exact", "degraded", "detector"}));
+  app.add_option("--detector-dir", c.mask.detector_dir,
+                 "folder with yolo-fastest-1.1_body.cfg and .weights")
+      ->capture_default_str();
+  app.add_option("--screen", c.screen.strategy, "residual screen")
+      ->capture_default_str()
+      ->check(CLI::IsMember(screen_strategy_names()));
+  app.add_option("--rounds", c.screen.rounds, "screen -> refine -> re-screen rounds")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 20));
+  app.add_option("--rough-pose", o.rough_pose, "how the rough pose is found")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"ransac", "constant-velocity"}));
+  app.add_option("--ransac-px", c.rough_pose.ransac_threshold_px, "PnP RANSAC inlier threshold [px]")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  app.add_option("--features", c.extraction.features, "ORB features per frame")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  app.add_option("--out", c.output.dir, "output folder")->capture_default_str();
+  app.add_option("--figure-frame", c.output.figure_frame,
+                 "frame drawn in matches.png / residual_histogram.png (-1: most person matches)")
+      ->capture_default_str()
+      ->check(CLI::Range(-1, 1000000));
+  app.add_flag("--quiet", o.quiet, "no per-frame progress on stderr");
+  app.add_flag("--ablation", o.ablation,
+               "run every screen x mask on the static and the person scenario and write "
+               "ablation.md and ablation.csv into --out");
+}
+
+std::string percent_or_na(const std::optional<double>& share) {
+  return share ? fmt::format("{:.1f} %", 100.0 * *share) : std::string("n/a");
+}
+
+int run_single(const CommandOptions& o, const CameraModel& camera, const RgbdSequence& sequence,
+               std::ostream& out, std::ostream& err) {
+  const Config& config = o.config;
+  FrameSource source(sequence, camera.depth_factor, config.scenario, config.mask);
+  int n = source.size();
+  if (config.dataset.max_frames > 0) n = std::min(n, config.dataset.max_frames);
+  if (config.output.figure_frame >= n) {
+    throw InvalidArgument(fmt::format("--figure-frame {} is beyond the {} frames run",
+                                      config.output.figure_frame, n));
+  }
+  RunResult run = run_tracker([&](int i) { return source.frame(i); }, n, config, camera,
+                              o.quiet ? nullptr : &err);
+  const Trajectory* groundtruth = sequence.groundtruth ? &*sequence.groundtruth : nullptr;
+  if (groundtruth != nullptr) {
+    run.evaluation = evaluate_trajectory(*groundtruth, estimate_of(run, "hbos-slam"), run.stamps);
+  }
+
+  const RunTotals& t = run.totals;
+  out << fmt::format("hbos-slam: {} frames of {} | {} scenario, mask {}, screen {}, rough pose {}\n",
+                     n, config.dataset.path, scenario_name(config.scenario),
+                     to_string(config.mask.source), config.screen.strategy,
+                     to_string(config.rough_pose.method));
+  if (run.evaluation) {
+    const Evaluation& e = *run.evaluation;
+    out << fmt::format("  ATE RMSE {:.2f} cm (mean {:.2f}, max {:.2f}) over {} poses", 100.0 * e.ate.stats.rmse,
+                       100.0 * e.ate.stats.mean, 100.0 * e.ate.stats.max, e.ate.stats.count);
+    if (e.rpe) {
+      out << fmt::format("; RPE {:.2f} mm/frame, {:.3f} deg/frame (RMSE)", 1000.0 * e.rpe->trans_m.rmse,
+                         e.rpe->rot_deg.rmse);
+    }
+    out << "\n";
+  } else {
+    out << "  no groundtruth.txt: ATE/RPE not computed\n";
+  }
+  out << fmt::format(
+      "  matches {:.0f}/frame; person matches kept {} ({} of {}); static matches lost {:.1f} %; "
+      "screen {:.0f} us/frame, refinement {:.0f} us/frame; {} of {} frames tracked\n",
+      t.frames > 1 ? static_cast<double>(t.matches) / (t.frames - 1) : 0.0,
+      percent_or_na(t.person_survival_share), t.person_survivors, t.person_matches,
+      100.0 * t.static_loss_share, t.mean_screen_us, t.mean_refine_us, t.frames_tracked, t.frames);
+  try {
+    for (const std::string& path :
+         write_run_outputs(config.output.dir, run, config, camera.name, groundtruth)) {
+      out << "wrote " << path << "\n";
+    }
+  } catch (const std::runtime_error& e) {
+    err << "hbos-slam: error: " << e.what() << "\n";
+    return kSlamOutputError;
+  }
+  return kSlamOk;
+}
+
+int run_ablation_command(const CommandOptions& o, const CameraModel& camera,
+                         const RgbdSequence& sequence, std::ostream& out, std::ostream& err) {
+  const Config& config = o.config;
+  const std::vector<AblationRow> rows = run_ablation(config, sequence, camera, o.quiet ? nullptr : &err);
+  int n = static_cast<int>(sequence.size());
+  if (config.dataset.max_frames > 0) n = std::min(n, config.dataset.max_frames);
+  const std::string md = ablation_markdown(rows, config, camera.name, n);
+  out << md;
+  try {
+    std::error_code error;
+    std::filesystem::create_directories(config.output.dir, error);
+    if (error) throw std::runtime_error("cannot create '" + config.output.dir + "': " + error.message());
+    const auto md_path = (std::filesystem::path(config.output.dir) / "ablation.md").string();
+    const auto csv_path = (std::filesystem::path(config.output.dir) / "ablation.csv").string();
+    write_file_atomically(md_path, md);
+    write_file_atomically(csv_path, ablation_csv(rows));
+    out << "wrote " << md_path << "\nwrote " << csv_path << "\n";
+  } catch (const std::runtime_error& e) {
+    err << "hbos-slam: error: " << e.what() << "\n";
+    return kSlamOutputError;
+  }
+  return kSlamOk;
+}
+
+}  // namespace
+
+int run_slam_command(int argc, const char* const* argv, std::ostream& out, std::ostream& err) {
+  CLI::App app{
+      "Mini-SLAM front end with a reprojection-residual screen (HBOS or a baseline). With no "
+      "options it tracks the embedded 37 TUM fr1/xyz frames with a real person composited in, "
+      "and writes trajectory.txt, stats.csv, summary.json and PNG figures into out/slam. Exit "
+      "status: 0 ok, 1 output not written, 2 bad input.",
+      "hbos-slam"};
+  CommandOptions options;
+  options.config.dataset.path = embedded("fr1_xyz_37");
+  options.config.scenario.person_dir = embedded("person");
+  options.config.mask.detector_dir = embedded("models/yolo-fastest-1.1_body");
+  add_options(app, options);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e, out, err) == 0 ? kSlamOk : kSlamBadInput;
+  }
+  options.config.scenario.add_person = options.scenario == "person";
+  options.config.mask.source = parse_mask_source(options.mask);
+  options.config.rough_pose.method = parse_rough_pose_method(options.rough_pose);
+  options.config.output.progress = !options.quiet;
+  try {
+    const CameraModel camera = load_camera(options.config.dataset.camera);
+    const RgbdSequence sequence =
+        load_tum_sequence(options.config.dataset.path, options.config.dataset.max_association_difference);
+    return options.ablation ? run_ablation_command(options, camera, sequence, out, err)
+                            : run_single(options, camera, sequence, out, err);
+  } catch (const InvalidArgument& e) {
+    err << "hbos-slam: error: " << e.what() << "\n";
+    return kSlamBadInput;
+  } catch (const std::exception& e) {
+    // OpenCV or the standard library failed on something not checked up front.
+    err << "hbos-slam: error: " << e.what() << "\n";
+    return kSlamOutputError;
+  }
+}
+
+}  // namespace hbos::slam
