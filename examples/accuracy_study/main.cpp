@@ -52,9 +52,8 @@ std::vector<study::DataSet> load_sets(const std::string& dir,
   return sets;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+/// Parses the command line and runs the study; unexpected exceptions escape to main.
+int study_main(int argc, char** argv) {
   CLI::App app{
       "ROC-AUC of HBOS configurations (default mode, classic 10 bins, other binnings, PyOD mode) "
       "on "
@@ -123,4 +122,17 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "hbos-accuracy-study: error: %s\n", e.what());
     return 2;
   }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return study_main(argc, argv);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "hbos-accuracy-study: error: %s\n", e.what());
+  } catch (...) {
+    std::fprintf(stderr, "hbos-accuracy-study: error: unknown exception\n");
+  }
+  return 2;
 }

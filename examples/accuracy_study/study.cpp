@@ -23,8 +23,9 @@ HbosParams equal_width(BinCountRule rule, Eigen::Index bins, Eigen::Index shifts
   return params;
 }
 
-Method hbos_method(std::string key, std::string title, std::string description, HbosParams params,
-                   Transform transform = Transform::None, bool main = false) {
+Method hbos_method(std::string key, std::string title, std::string description,
+                   const HbosParams& params, Transform transform = Transform::None,
+                   bool main = false) {
   Method m;
   m.key = std::move(key);
   m.title = std::move(title);

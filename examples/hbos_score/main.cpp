@@ -61,6 +61,7 @@ struct RawOptions {
 template <class Value>
 std::vector<std::string> keys_of(const std::map<std::string, Value>& map) {
   std::vector<std::string> names;
+  names.reserve(map.size());
   for (const auto& entry : map) names.push_back(entry.first);
   return names;
 }
@@ -86,9 +87,8 @@ int run(const ScoreOptions& options) {
   return 0;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+/// Parses the command line and runs; exceptions it does not map to an exit code escape to main.
+int score_main(int argc, char** argv) {
   CLI::App app{
       "Scores every row of a numeric CSV file (rows = samples, columns = features) with HBOS, the "
       "histogram-based outlier score: higher = more anomalous. Writes CSV with columns score,label "
@@ -226,4 +226,17 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "hbos-score: error: %s\n", e.what());
     return kExitError;
   }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return score_main(argc, argv);
+  } catch (const std::exception& e) {  // e.g. out of memory while setting up the parser
+    std::fprintf(stderr, "hbos-score: error: %s\n", e.what());
+  } catch (...) {
+    std::fprintf(stderr, "hbos-score: error: unknown exception\n");
+  }
+  return kExitError;
 }

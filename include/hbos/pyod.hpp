@@ -39,6 +39,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <type_traits>
 #include <utility>
 #include <vector>
@@ -314,6 +315,13 @@ class PyodHbos {
     }
 
     [[nodiscard]] double term_exact(double x) const { return term(x, digitize(x)); }
+
+    /// The bin x in [lo, hi] is counted in and the bin it is scored with, by search.
+    void exact_bins(double x, Eigen::Index& counted, Eigen::Index& scored) const {
+      const Eigen::Index B = bins();
+      counted = detail::count_bin(x, edges.data(), B, detail::bin_guess(x, lo, norm, B - 1));
+      scored = std::max<Eigen::Index>(digitize(x), 1) - 1;
+    }
   };
 
   PyodHbos() = default;
@@ -333,31 +341,18 @@ class PyodHbos {
     return features_[static_cast<std::size_t>(j)];
   }
 
-  /// Smallest and largest value of a column (NaN ignored; the counting pass catches it).
-  template <class Stride>
-  [[nodiscard]] static std::pair<double, double> column_range(const Scalar* column, Stride stride,
-                                                              Eigen::Index n) {
-    // Two independent chains per extreme (min/max are exact in any order); plain locals so that
-    // they stay in registers.
-    double lo0 = static_cast<double>(column[0]);
-    double lo1 = lo0;
-    double hi0 = lo0;
-    double hi1 = lo0;
-    Eigen::Index i = 0;
-    for (; i + 2 <= n; i += 2) {
-      const double x0 = static_cast<double>(column[i * stride]);
-      const double x1 = static_cast<double>(column[(i + 1) * stride]);
-      lo0 = x0 < lo0 ? x0 : lo0;
-      hi0 = x0 > hi0 ? x0 : hi0;
-      lo1 = x1 < lo1 ? x1 : lo1;
-      hi1 = x1 > hi1 ? x1 : hi1;
+  /// Smallest and largest value of a column. With a NaN in the column either may be NaN or
+  /// not (Eigen's fast reductions); the callers check both and the counting pass finds the rest.
+  [[nodiscard]] static std::pair<double, double> column_range(const Scalar* column,
+                                                              Eigen::Index stride, Eigen::Index n) {
+    using Column = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
+    if (stride == 1) {  // contiguous: vectorised reductions
+      const Eigen::Map<const Column> x(column, n);
+      return {static_cast<double>(x.minCoeff()), static_cast<double>(x.maxCoeff())};
     }
-    if (i < n) {
-      const double x = static_cast<double>(column[i * stride]);
-      lo0 = x < lo0 ? x : lo0;
-      hi0 = x > hi0 ? x : hi0;
-    }
-    return {std::min(lo0, lo1), std::max(hi0, hi1)};
+    const Eigen::Map<const Column, 0, Eigen::InnerStride<>> x(column, n,
+                                                              Eigen::InnerStride<>(stride));
+    return {static_cast<double>(x.minCoeff()), static_cast<double>(x.maxCoeff())};
   }
 
   [[nodiscard]] static PyodHbos fit_view(const View& X, const PyodParams& params) {
@@ -374,20 +369,26 @@ class PyodHbos {
     model.features_.reserve(static_cast<std::size_t>(X.cols));
     // The bin each training value is scored with, from the counting pass, for the scoring pass
     // (16 bits: beyond 65536 bins the training values are scored like new data instead).
-    std::vector<std::uint16_t> scored_bins(static_cast<std::size_t>(n * X.cols));
+    const std::unique_ptr<std::uint16_t[]> scored_bins(
+        new std::uint16_t[static_cast<std::size_t>(n * X.cols)]);  // not zero-filled
     bool bins_stored = true;
     detail::AutoBinsScratch<Scalar> scratch;
     for (Eigen::Index j = 0; j < X.cols; ++j) {
       const Scalar* column = X.data + j * X.col_stride;
-      const auto [lo, hi] = detail::with_stride(
-          X.row_stride, [&](auto stride) { return column_range(column, stride, n); });
-      if (!std::isfinite(lo) || !std::isfinite(hi)) detail::require_finite_entry(X, "X");
+      const auto [lo, hi] = column_range(column, X.row_stride, n);
+      // min/max skip NaN; the counting pass finds it, but the auto search must not see one.
+      bool finite = std::isfinite(lo) && std::isfinite(hi);
+      if (finite && params.auto_bins) {
+        for (Eigen::Index i = 0; i < n; ++i)
+          finite = finite && !std::isnan(column[i * X.row_stride]);
+      }
+      if (!finite) detail::require_finite_entry(X, "X");
       const Eigen::Index B =
           params.auto_bins ? detail::pyod_optimal_bins(column, X.row_stride, n, lo, hi, scratch)
                            : params.n_bins;
       bins_stored = bins_stored && B <= kMaxStoredBins;
-      model.features_.push_back(fit_feature(column, X.row_stride, n, j, B, lo, hi, params,
-                                            bins_stored ? scored_bins.data() + j * n : nullptr));
+      model.features_.push_back(
+          fit_feature(column, X.row_stride, n, j, B, lo, hi, params, scored_bins.get() + j * n));
     }
     if (!bins_stored) {
       model.scores_ = model.score_view(X);
@@ -397,7 +398,7 @@ class PyodHbos {
           n,
           [&](Eigen::Index j, Eigen::Index first, Eigen::Index m, double* dst, auto add) {
             const double* log_terms = model.features_[static_cast<std::size_t>(j)].log_terms.data();
-            const std::uint16_t* bin = scored_bins.data() + j * n + first;
+            const std::uint16_t* bin = scored_bins.get() + j * n + first;
             for (Eigen::Index r = 0; r < m; ++r) {
               if constexpr (decltype(add)::value) {
                 dst[r] += log_terms[bin[r]];
@@ -418,8 +419,8 @@ class PyodHbos {
   static constexpr Eigen::Index kMaxStoredBins = 65536;
 
   /// numpy.histogram(column, B, density=True) plus the scoring tables. Writes the bin each value
-  /// is scored with (which differs from the bin it is counted in for values on interior edges)
-  /// unless `scored_bins` is null.
+  /// is scored with (which differs from the bin it is counted in for values on interior edges),
+  /// truncated to 16 bits: meaningful only when B <= kMaxStoredBins.
   [[nodiscard]] static Feature fit_feature(const Scalar* column, Eigen::Index stride,
                                            Eigen::Index n, Eigen::Index j, Eigen::Index B,
                                            double min_value, double max_value,
@@ -447,18 +448,21 @@ class PyodHbos {
     f.cell_scale = static_cast<double>(nominal_cells) / (f.hi - f.lo);
     if (!std::isfinite(f.cell_scale)) f.cell_scale = 0.0;  // a range of denormals: one cell
     f.cells = f.cell(f.hi) + 1;
-    // Per cell: the bin of a value below the cell's own edge (= #{interior edges in cells
-    // below}) and how many interior edges the cell holds.
+    // Per cell: the interior edge inside it (+inf if none) and the bin of a value below that
+    // edge (= #{interior edges in cells below}); first_bin = -1 marks a cell holding several.
     struct CellBins {
+      double edge = std::numeric_limits<double>::infinity();
       Eigen::Index first_bin = 0;
-      Eigen::Index edges_in = 0;
     };
+    std::vector<Eigen::Index> edges_in(static_cast<std::size_t>(f.cells), 0);
+    for (Eigen::Index k = 1; k < B; ++k) ++edges_in[static_cast<std::size_t>(f.cell(f.edges[k]))];
     std::vector<CellBins> cell_bins(static_cast<std::size_t>(f.cells));
-    for (Eigen::Index k = 1; k < B; ++k)
-      ++cell_bins[static_cast<std::size_t>(f.cell(f.edges[k]))].edges_in;
     for (Eigen::Index c = 0, below = 0; c < f.cells; ++c) {
-      cell_bins[static_cast<std::size_t>(c)].first_bin = below;
-      below += cell_bins[static_cast<std::size_t>(c)].edges_in;
+      const Eigen::Index inside = edges_in[static_cast<std::size_t>(c)];
+      CellBins& cell = cell_bins[static_cast<std::size_t>(c)];
+      cell.first_bin = inside > 1 ? -1 : below;
+      if (inside == 1) cell.edge = f.edges[below + 1];
+      below += inside;
     }
 
     // Count (bin c: e_c <= x < e_{c+1}, last closed) and record the scored bin (PyOD's look-up:
@@ -466,47 +470,23 @@ class PyodHbos {
     // chains of increments of one counter.
     std::vector<Eigen::Index> counts(static_cast<std::size_t>(4 * B), 0);
     Eigen::Index non_finite = 0;
-    auto count_one = [&](double x, Eigen::Index* count, std::uint16_t* scored_bin, auto store) {
-      if (std::isnan(x)) {  // the only value outside [min, max]
-        ++non_finite;
-        return;
-      }
-      const CellBins cell = cell_bins[static_cast<std::size_t>(f.cell(x))];
-      Eigen::Index counted = cell.first_bin;
-      Eigen::Index scored = counted;
-      if (cell.edges_in == 1) {
-        const double edge = f.edges[counted + 1];
-        counted += edge <= x ? 1 : 0;
-        scored += edge < x ? 1 : 0;
-      } else if (cell.edges_in > 1) {
-        counted =
-            detail::count_bin(x, f.edges.data(), B, detail::bin_guess(x, f.lo, f.norm, B - 1));
-        scored = std::max<Eigen::Index>(f.digitize(x), 1) - 1;
-      }
-      ++count[counted];
-      if constexpr (decltype(store)::value) *scored_bin = static_cast<std::uint16_t>(scored);
-    };
-    auto count_all = [&](auto step, auto store) {
-      Eigen::Index* c0 = counts.data();
-      Eigen::Index* c1 = c0 + B;
-      Eigen::Index* c2 = c1 + B;
-      Eigen::Index* c3 = c2 + B;
-      std::uint16_t* out = scored_bins;
-      auto at = [&](Eigen::Index i) { return static_cast<double>(column[i * step]); };
-      Eigen::Index i = 0;
-      for (; i + 4 <= n; i += 4) {
-        count_one(at(i), c0, out + i, store);
-        count_one(at(i + 1), c1, out + i + 1, store);
-        count_one(at(i + 2), c2, out + i + 2, store);
-        count_one(at(i + 3), c3, out + i + 3, store);
-      }
-      for (; i < n; ++i) count_one(at(i), c0, out + i, store);
-    };
     detail::with_stride(stride, [&](auto step) {
-      if (scored_bins != nullptr) {
-        count_all(step, std::true_type{});
-      } else {
-        count_all(step, std::false_type{});
+      const CellBins* cells = cell_bins.data();
+      Eigen::Index* count = counts.data();
+      Eigen::Index* const count_end = count + 4 * B;
+      for (Eigen::Index i = 0; i < n; ++i) {
+        const double x = static_cast<double>(column[i * step]);
+        if (std::isnan(x)) {  // the only value outside [min, max]
+          ++non_finite;
+          continue;
+        }
+        const CellBins cell = cells[f.cell(x)];
+        Eigen::Index counted = cell.first_bin + (cell.edge <= x ? 1 : 0);
+        Eigen::Index scored = cell.first_bin + (cell.edge < x ? 1 : 0);
+        if (cell.first_bin < 0) f.exact_bins(x, counted, scored);
+        ++count[counted];
+        count = count + B == count_end ? counts.data() : count + B;
+        scored_bins[i] = static_cast<std::uint16_t>(scored);  // truncated if B > kMaxStoredBins
       }
     });
     for (Eigen::Index i = 0; non_finite > 0 && i < n; ++i) {
@@ -539,12 +519,12 @@ class PyodHbos {
       const auto uc = static_cast<std::size_t>(c);
       const Eigen::Index bin = cell_bins[uc].first_bin;
       Cell& cell = f.grid[uc];
-      if (cell_bins[uc].edges_in == 0) {
-        cell = {kInf, f.log_terms[bin], f.log_terms[bin]};
-      } else if (cell_bins[uc].edges_in == 1) {
-        cell = {f.edges[bin + 1], f.log_terms[bin], f.log_terms[bin + 1]};
-      } else {
+      if (bin < 0) {
         cell = {kInf, kNaN, kNaN};
+      } else if (edges_in[uc] == 0) {
+        cell = {kInf, f.log_terms[bin], f.log_terms[bin]};
+      } else {
+        cell = {cell_bins[uc].edge, f.log_terms[bin], f.log_terms[bin + 1]};
       }
     }
     return f;
@@ -624,7 +604,12 @@ class PyodHbos {
   }
 
   [[nodiscard]] Labels label(const Vector& scores) const {
-    return (scores.array() > threshold_).template cast<int>().matrix();
+    Labels labels(scores.size());
+    const Scalar threshold = threshold_;
+    const Scalar* score = scores.data();
+    int* label = labels.data();
+    for (Eigen::Index i = 0; i < scores.size(); ++i) label[i] = score[i] > threshold ? 1 : 0;
+    return labels;
   }
 
   std::vector<Feature> features_;

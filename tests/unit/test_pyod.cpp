@@ -626,6 +626,10 @@ TEST_CASE("pyod: bad input throws InvalidArgument naming the problem", "[pyod]")
     CHECK_THROWS_WITH(PyodHbosd::fit(bad), Contains("X(7, 1) is not finite: nan"));
     bad(7, 1) = -std::numeric_limits<double>::infinity();
     CHECK_THROWS_WITH(PyodHbosd::fit(bad), Contains("X(7, 1) is not finite: -inf"));
+    hbos::PyodParams auto_bins;
+    auto_bins.auto_bins = true;
+    bad(7, 1) = std::numeric_limits<double>::quiet_NaN();
+    CHECK_THROWS_WITH(PyodHbosd::fit(bad, auto_bins), Contains("X(7, 1) is not finite: nan"));
     const auto model = PyodHbosd::fit(X);
     CHECK_THROWS_WITH(model.decision_function(bad), Contains("X(7, 1) is not finite"));
     CHECK_THROWS_AS(model.predict(bad), InvalidArgument);
@@ -648,6 +652,22 @@ TEST_CASE("pyod: bad input throws InvalidArgument naming the problem", "[pyod]")
                       Contains("narrower than the floating-point resolution"));
     const Eigen::MatrixXd huge = (Eigen::MatrixXd(2, 1) << -1e308, 1e308).finished();
     CHECK_THROWS_WITH(PyodHbosd::fit(huge), Contains("overflows a double"));
+    // A range of one denormal: numpy's step is 0, every edge rounds to 0.
+    Eigen::MatrixXd denormal(16, 1);
+    for (Index i = 0; i < 16; ++i) denormal(i, 0) = i % 3 == 0 ? 5e-324 : 0.0;
+    CHECK_THROWS_WITH(PyodHbosd::fit(denormal), Contains("edges 0 and 1 are equal"));
+    hbos::PyodParams auto_bins;
+    auto_bins.auto_bins = true;
+    CHECK_THROWS_AS(PyodHbosd::fit(denormal, auto_bins), InvalidArgument);
+    // Subnormal values spread over a representable range are fine.
+    Eigen::MatrixXd subnormal(16, 1);
+    for (Index i = 0; i < 16; ++i) subnormal(i, 0) = static_cast<double>(i) * 1e-310;
+    for (const bool a : {false, true}) {
+      auto_bins.auto_bins = a;
+      const auto model = PyodHbosd::fit(subnormal, auto_bins);
+      CHECK(model.counts(0).sum() == 16);
+      CHECK(model.decision_function(subnormal) == model.decision_scores());
+    }
   }
 }
 

@@ -30,14 +30,16 @@ struct AblationRow {
 
 /// Runs the grid on `sequence` (which needs ground truth). `base` supplies every other setting.
 /// With `progress`, one line per run.
-[[nodiscard]] std::vector<AblationRow> run_ablation(const Config& base, const RgbdSequence& sequence,
+[[nodiscard]] std::vector<AblationRow> run_ablation(const Config& base,
+                                                    const RgbdSequence& sequence,
                                                     const CameraModel& camera,
                                                     std::ostream* progress);
 
 /// The rows as a Markdown table (ATE RMSE cm, RPE trans mm/frame, person matches kept %, static
 /// matches lost %, screen us/frame), preceded by a line on the settings.
-[[nodiscard]] std::string ablation_markdown(const std::vector<AblationRow>& rows, const Config& base,
-                                            const std::string& camera_name, int frames);
+[[nodiscard]] std::string ablation_markdown(const std::vector<AblationRow>& rows,
+                                            const Config& base, const std::string& camera_name,
+                                            int frames);
 
 /// The rows as CSV, full precision, for scripts.
 [[nodiscard]] std::string ablation_csv(const std::vector<AblationRow>& rows);

@@ -19,7 +19,8 @@ namespace hbos::slam {
 namespace {
 
 // The keys a camera file may set, in the order they are reported.
-constexpr const char* kKeys[] = {"fx", "fy", "cx", "cy", "k1", "k2", "p1", "p2", "k3", "depth_factor"};
+constexpr const char* kKeys[] = {"fx", "fy", "cx", "cy", "k1",
+                                 "k2", "p1", "p2", "k3", "depth_factor"};
 
 // "Camera.fx" and "fx" mean the same; ORB-SLAM2 calls the depth scale DepthMapFactor.
 std::string canonical_key(std::string key) {
@@ -45,14 +46,15 @@ CameraModel build_camera(const std::string& name,
                          const std::map<std::string, std::pair<double, std::string>>& values) {
   CameraModel c;
   c.name = name;
-  std::map<std::string, double*> fields = {{"fx", &c.fx}, {"fy", &c.fy}, {"cx", &c.cx},
-                                           {"cy", &c.cy}, {"k1", &c.k1}, {"k2", &c.k2},
-                                           {"p1", &c.p1}, {"p2", &c.p2}, {"k3", &c.k3},
-                                           {"depth_factor", &c.depth_factor}};
+  std::map<std::string, double*> fields = {{"fx", &c.fx}, {"fy", &c.fy},
+                                           {"cx", &c.cx}, {"cy", &c.cy},
+                                           {"k1", &c.k1}, {"k2", &c.k2},
+                                           {"p1", &c.p1}, {"p2", &c.p2},
+                                           {"k3", &c.k3}, {"depth_factor", &c.depth_factor}};
   for (const char* required : {"fx", "fy", "cx", "cy"}) {
     if (values.count(required) == 0) {
-      throw InvalidArgument(fmt::format("{}: missing field '{}' (camera files need fx, fy, cx, cy)",
-                                        name, required));
+      throw InvalidArgument(
+          fmt::format("{}: missing field '{}' (camera files need fx, fy, cx, cy)", name, required));
     }
   }
   for (const auto& [key, entry] : values) {
@@ -94,7 +96,8 @@ CameraModel load_yaml_camera(const std::string& path) {
           fmt::format("{}: field '{}' is not a number: \"{}\"", where, key, value_text));
     }
     if (values.count(key) != 0) {
-      throw InvalidArgument(fmt::format("{}: field '{}' repeats {}", where, key, values[key].second));
+      throw InvalidArgument(
+          fmt::format("{}: field '{}' repeats {}", where, key, values[key].second));
     }
     values[key] = {value, where};
   }
@@ -112,7 +115,8 @@ CameraModel load_json_camera(const std::string& path) {
     j = nlohmann::json::parse(text);
   } catch (const nlohmann::json::parse_error& e) {
     const auto upto = std::min(text.size(), e.byte == 0 ? std::size_t{0} : e.byte - 1);
-    const auto line = 1 + std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(upto), '\n');
+    const auto line =
+        1 + std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(upto), '\n');
     throw InvalidArgument(fmt::format("{}:{}: not valid JSON: {}", path, line, e.what()));
   }
   if (!j.is_object()) throw InvalidArgument(fmt::format("{}: expected a JSON object", path));

@@ -19,7 +19,8 @@ struct CameraModel {
   double fy = 0.0;   ///< [px]
   double cx = 0.0;   ///< [px]
   double cy = 0.0;   ///< [px]
-  double k1 = 0.0, k2 = 0.0, p1 = 0.0, p2 = 0.0, k3 = 0.0;  ///< OpenCV's distortion order k1 k2 p1 p2 k3
+  double k1 = 0.0, k2 = 0.0, p1 = 0.0, p2 = 0.0,
+         k3 = 0.0;               ///< OpenCV's distortion order k1 k2 p1 p2 k3
   double depth_factor = 5000.0;  ///< depth image units per metre (TUM: 5000)
 
   [[nodiscard]] bool has_distortion() const;

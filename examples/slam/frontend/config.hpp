@@ -16,16 +16,16 @@ struct DatasetConfig {
   /// p1, p2, k3, depth_factor] (ORB-SLAM2's `Camera.fx` spelling works too).
   std::string camera = "tum1";
   double max_association_difference = 0.02;  ///< [s] rgb/depth pairs need |dt| below this
-  int max_frames = 0;                         ///< use only the first N frames; 0 = all
+  int max_frames = 0;                        ///< use only the first N frames; 0 = all
 };
 
 /// The labelled dynamic scenario: a real person cut-out composited into every frame.
 struct ScenarioConfig {
-  bool add_person = false;  ///< composite the person (the "dynamic" scenario)
-  std::string person_dir;   ///< folder with rgb.png, mask.png, depth.png of the cut-out
-  double depth_m = 0.7;     ///< [m] median depth the person is placed at
-  double start_x_px = 40.0;          ///< [px] left edge of the cut-out in the first frame
-  double speed_px_per_frame = 5.5;   ///< [px/frame] sideways motion in the image, + = right
+  bool add_person = false;          ///< composite the person (the "dynamic" scenario)
+  std::string person_dir;           ///< folder with rgb.png, mask.png, depth.png of the cut-out
+  double depth_m = 0.7;             ///< [m] median depth the person is placed at
+  double start_x_px = 40.0;         ///< [px] left edge of the cut-out in the first frame
+  double speed_px_per_frame = 5.5;  ///< [px/frame] sideways motion in the image, + = right
 };
 
 /// Which dynamic-object mask the feature extractor avoids.
@@ -38,13 +38,14 @@ enum class MaskSource {
 
 struct MaskConfig {
   MaskSource source = MaskSource::kNone;
-  int degraded_erosion_px = 6;             ///< [px] erosion radius of the degraded mask
-  double degraded_unmasked_lower = 0.4;    ///< share of the person's height left unmasked at the bottom
-  int degraded_missing_every = 5;          ///< frames 4, 9, 14, ... have no mask at all; 0 = never
-  std::string detector_dir;                ///< folder with yolo-fastest-1.1_body.{cfg,weights}
-  float detector_confidence = 0.5f;        ///< objectness x class score to accept a box
-  float detector_nms = 0.45f;              ///< IoU of non-maximum suppression
-  int detector_input_px = 320;             ///< square network input size (the model's own)
+  int degraded_erosion_px = 6;  ///< [px] erosion radius of the degraded mask
+  double degraded_unmasked_lower =
+      0.4;                           ///< share of the person's height left unmasked at the bottom
+  int degraded_missing_every = 5;    ///< frames 4, 9, 14, ... have no mask at all; 0 = never
+  std::string detector_dir;          ///< folder with yolo-fastest-1.1_body.{cfg,weights}
+  float detector_confidence = 0.5f;  ///< objectness x class score to accept a box
+  float detector_nms = 0.45f;        ///< IoU of non-maximum suppression
+  int detector_input_px = 320;       ///< square network input size (the model's own)
 };
 
 /// ORB as ORB-SLAM2 configures it (TUM yaml files).
@@ -52,17 +53,17 @@ struct ExtractionConfig {
   int features = 1000;
   float scale_factor = 1.2f;
   int levels = 8;
-  int fast_threshold = 20;      ///< FAST threshold tried first
-  int min_fast_threshold = 7;   ///< retried with this when the first gives too few corners
-  double min_depth_m = 0.1;     ///< [m] depth below this counts as invalid
-  double max_depth_m = 8.0;     ///< [m] depth above this counts as invalid (Kinect noise)
+  int fast_threshold = 20;     ///< FAST threshold tried first
+  int min_fast_threshold = 7;  ///< retried with this when the first gives too few corners
+  double min_depth_m = 0.1;    ///< [m] depth below this counts as invalid
+  double max_depth_m = 8.0;    ///< [m] depth above this counts as invalid (Kinect noise)
 };
 
 /// Frame-to-frame descriptor matching.
 struct MatchingConfig {
-  int max_hamming = 50;      ///< ORB-SLAM2's TH_LOW: descriptors further apart never match
-  bool cross_check = true;   ///< keep only mutual nearest neighbours
-  double ratio = 0.0;        ///< Lowe ratio best/second (e.g. 0.8); 0 = off
+  int max_hamming = 50;     ///< ORB-SLAM2's TH_LOW: descriptors further apart never match
+  bool cross_check = true;  ///< keep only mutual nearest neighbours
+  double ratio = 0.0;       ///< Lowe ratio best/second (e.g. 0.8); 0 = off
 };
 
 /// How the rough pose (the one the residuals are measured under) is found.
@@ -85,7 +86,7 @@ struct RoughPoseConfig {
 struct ScreenStageConfig {
   /// default | paper | chi2 | fixed | quantile | mad | none
   std::string strategy = "default";
-  int rounds = 4;             ///< screen -> refine -> re-screen rounds (ORB-SLAM2 runs 4)
+  int rounds = 4;                 ///< screen -> refine -> re-screen rounds (ORB-SLAM2 runs 4)
   Eigen::Index min_inliers = 10;  ///< stop re-fitting below this many survivors
 };
 

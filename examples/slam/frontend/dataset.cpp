@@ -79,8 +79,8 @@ RgbdSequence load_tum_sequence(const std::string& folder, double max_difference)
   }
   sequence.unpaired_rgb = static_cast<Eigen::Index>(rgb.size() - sequence.frames.size());
   if (sequence.frames.empty()) {
-    throw InvalidArgument(fmt::format("{}: no colour image has a depth image within {} s",
-                                      folder, max_difference));
+    throw InvalidArgument(
+        fmt::format("{}: no colour image has a depth image within {} s", folder, max_difference));
   }
   const fs::path gt = fs::path(folder) / "groundtruth.txt";
   if (fs::exists(gt)) sequence.groundtruth = read_tum_trajectory(gt.string());
@@ -96,20 +96,28 @@ RgbdImages read_frame_images(const RgbdSequence& sequence, Eigen::Index index,
   const FrameRecord& f = sequence.frames[static_cast<std::size_t>(index)];
   const std::string rgb_path = (fs::path(sequence.root) / f.rgb.path).string();
   const std::string depth_path = (fs::path(sequence.root) / f.depth.path).string();
+  if (!fs::is_regular_file(rgb_path)) {
+    throw InvalidArgument(
+        fmt::format("colour image '{}' (rgb.txt:{}) does not exist", rgb_path, f.rgb.line));
+  }
+  if (!fs::is_regular_file(depth_path)) {
+    throw InvalidArgument(
+        fmt::format("depth image '{}' (depth.txt:{}) does not exist", depth_path, f.depth.line));
+  }
   RgbdImages images;
   images.bgr = cv::imread(rgb_path, cv::IMREAD_COLOR);
   if (images.bgr.empty()) {
-    throw InvalidArgument(fmt::format("cannot read colour image '{}' (rgb.txt:{})", rgb_path,
-                                      f.rgb.line));
+    throw InvalidArgument(
+        fmt::format("cannot read colour image '{}' (rgb.txt:{})", rgb_path, f.rgb.line));
   }
   const cv::Mat raw_depth = cv::imread(depth_path, cv::IMREAD_UNCHANGED);
   if (raw_depth.empty()) {
-    throw InvalidArgument(fmt::format("cannot read depth image '{}' (depth.txt:{})", depth_path,
-                                      f.depth.line));
+    throw InvalidArgument(
+        fmt::format("cannot read depth image '{}' (depth.txt:{})", depth_path, f.depth.line));
   }
   if (raw_depth.type() != CV_16UC1) {
-    throw InvalidArgument(fmt::format("depth image '{}' (depth.txt:{}) is not 16-bit single channel",
-                                      depth_path, f.depth.line));
+    throw InvalidArgument(fmt::format(
+        "depth image '{}' (depth.txt:{}) is not 16-bit single channel", depth_path, f.depth.line));
   }
   if (raw_depth.size() != images.bgr.size()) {
     throw InvalidArgument(fmt::format("depth image '{}' is {}x{}, its colour image '{}' {}x{}",

@@ -33,9 +33,9 @@ struct FrameRecord {
 };
 
 struct RgbdSequence {
-  std::string root;                  ///< the sequence folder
-  std::vector<FrameRecord> frames;   ///< in time order
-  Eigen::Index unpaired_rgb = 0;     ///< colour images without a depth image within the limit
+  std::string root;                       ///< the sequence folder
+  std::vector<FrameRecord> frames;        ///< in time order
+  Eigen::Index unpaired_rgb = 0;          ///< colour images without a depth image within the limit
   std::optional<Trajectory> groundtruth;  ///< groundtruth.txt, when the folder has one
 
   [[nodiscard]] Eigen::Index size() const { return static_cast<Eigen::Index>(frames.size()); }

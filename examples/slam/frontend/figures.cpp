@@ -19,18 +19,18 @@ namespace hbos::slam {
 
 namespace {
 
-const cv::Scalar kKept(60, 200, 60);        // green
-const cv::Scalar kRejected(40, 40, 230);    // red
-const cv::Scalar kPersonKept(0, 160, 255);  // orange
+const cv::Scalar kKept(60, 200, 60);             // green
+const cv::Scalar kRejected(40, 40, 230);         // red
+const cv::Scalar kPersonKept(0, 160, 255);       // orange
 const cv::Scalar kPersonRejected(200, 60, 200);  // magenta
-const cv::Scalar kLabel(0, 200, 240);       // amber (plain yellow is unreadable on white)
-const cv::Scalar kMask(220, 190, 0);        // dark cyan
-const cv::Scalar kBox(255, 120, 40);        // blue
+const cv::Scalar kLabel(0, 200, 240);            // amber (plain yellow is unreadable on white)
+const cv::Scalar kMask(220, 190, 0);             // dark cyan
+const cv::Scalar kBox(255, 120, 40);             // blue
 const cv::Scalar kInk(30, 30, 30);
 const cv::Scalar kWhite(255, 255, 255);
 
-void text(cv::Mat& image, const std::string& s, cv::Point at, double scale, const cv::Scalar& colour,
-          int thickness = 1) {
+void text(cv::Mat& image, const std::string& s, cv::Point at, double scale,
+          const cv::Scalar& colour, int thickness = 1) {
   cv::putText(image, s, at, cv::FONT_HERSHEY_SIMPLEX, scale, colour, thickness, cv::LINE_AA);
 }
 
@@ -86,9 +86,10 @@ cv::Mat draw_match_figure(const FigureFrame& figure, const std::string& title) {
       x += cv::getTextSize(words, cv::FONT_HERSHEY_SIMPLEX, 0.5, 1, &baseline).width + 12;
     }
   };
-  legend(46, {{fmt::format("kept {}", kept), kKept},
-              {fmt::format("rejected {}", total - kept), kRejected},
-              {fmt::format("| ringed: on the person {}, of them kept {}", person, person_kept), kInk}});
+  legend(46,
+         {{fmt::format("kept {}", kept), kKept},
+          {fmt::format("rejected {}", total - kept), kRejected},
+          {fmt::format("| ringed: on the person {}, of them kept {}", person, person_kept), kInk}});
   std::vector<std::pair<std::string, cv::Scalar>> outlines = {
       {"outlines:", kInk}, {"person label", kLabel}, {"extraction mask", kMask}};
   if (!f.detections.empty()) outlines.emplace_back("detector boxes", kBox);
@@ -127,7 +128,8 @@ cv::Mat draw_residual_histogram(const FigureFrame& figure, const std::string& ti
     if (!std::isfinite(s.magnitude[i])) continue;
     const int bin = std::min(kBins - 1, static_cast<int>(s.magnitude[i] / axis * kBins));
     const bool person = i < r.matches.size() && r.matches[i].on_person;
-    counts[static_cast<std::size_t>(bin)][static_cast<std::size_t>((person ? 2 : 0) + (s.inlier[i] ? 0 : 1))]++;
+    counts[static_cast<std::size_t>(bin)]
+          [static_cast<std::size_t>((person ? 2 : 0) + (s.inlier[i] ? 0 : 1))]++;
   }
   int tallest = 1;
   for (const auto& c : counts) tallest = std::max(tallest, c[0] + c[1] + c[2] + c[3]);
@@ -135,7 +137,9 @@ cv::Mat draw_residual_histogram(const FigureFrame& figure, const std::string& ti
   const int width = 960, height = 540, left = 70, right = 30, top = 70, bottom = 60;
   cv::Mat canvas(height, width, CV_8UC3, kWhite);
   const int plot_w = width - left - right, plot_h = height - top - bottom;
-  const auto x_of = [&](double v) { return left + static_cast<int>(std::lround(v / axis * plot_w)); };
+  const auto x_of = [&](double v) {
+    return left + static_cast<int>(std::lround(v / axis * plot_w));
+  };
   const auto y_of = [&](double c) {
     return top + plot_h - static_cast<int>(std::lround(c / tallest * plot_h));
   };
@@ -167,9 +171,9 @@ cv::Mat draw_residual_histogram(const FigureFrame& figure, const std::string& ti
   if (std::isfinite(cut)) {
     const int x = x_of(std::min(cut, axis));
     for (int y = top; y < top + plot_h; y += 10) cv::line(canvas, {x, y}, {x, y + 6}, kInk, 2);
-    const std::string label = gate ? fmt::format("threshold {:.3g}", cut)
-                                   : fmt::format("smallest rejected {:.3g} (score cut {:.3g})",
-                                                 cut, s.threshold);
+    const std::string label =
+        gate ? fmt::format("threshold {:.3g}", cut)
+             : fmt::format("smallest rejected {:.3g} (score cut {:.3g})", cut, s.threshold);
     text(canvas, label, {std::min(x + 6, width - 330), top + 16}, 0.5, kInk, 1);
   }
   text(canvas, title, {left, 24}, 0.55, kInk, 1);
@@ -188,8 +192,8 @@ void write_png(const std::string& path, const cv::Mat& image) {
   if (!cv::imencode(".png", image, bytes)) {
     throw std::runtime_error("cannot encode PNG '" + path + "'");
   }
-  write_file_atomically(path,
-                        std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
+  write_file_atomically(
+      path, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
 }
 
 }  // namespace hbos::slam

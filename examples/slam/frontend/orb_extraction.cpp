@@ -22,8 +22,8 @@ OrbExtractor::OrbExtractor(const ExtractionConfig& config, CameraModel camera)
         config_.min_fast_threshold, config_.min_depth_m, config_.max_depth_m));
   }
   orb_ = cv::ORB::create(config_.features, config_.scale_factor, config_.levels,
-                         /*edgeThreshold=*/19, /*firstLevel=*/0, /*WTA_K=*/2,
-                         cv::ORB::HARRIS_SCORE, /*patchSize=*/31, config_.fast_threshold);
+                         /*edgeThreshold=*/19, /*firstLevel=*/0, /*WTA_K=*/2, cv::ORB::HARRIS_SCORE,
+                         /*patchSize=*/31, config_.fast_threshold);
 }
 
 Features OrbExtractor::extract(const Frame& frame) {
@@ -60,9 +60,8 @@ Features OrbExtractor::extract(const Frame& frame) {
     const float d = frame.depth_m.at<float>(y, x);
     const bool valid = d >= config_.min_depth_m && d <= config_.max_depth_m;
     f.depth_m.push_back(valid ? d : 0.f);
-    f.on_person.push_back(!frame.person_label.empty() && frame.person_label.at<std::uint8_t>(y, x) != 0
-                              ? 1
-                              : 0);
+    f.on_person.push_back(
+        !frame.person_label.empty() && frame.person_label.at<std::uint8_t>(y, x) != 0 ? 1 : 0);
   }
   return f;
 }

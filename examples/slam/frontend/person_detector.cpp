@@ -14,8 +14,8 @@ PersonDetector::PersonDetector(const MaskConfig& config)
       nms_(config.detector_nms),
       input_px_(config.detector_input_px) {
   namespace fs = std::filesystem;
-  if (!(confidence_ > 0.f && confidence_ < 1.f) || !(nms_ > 0.f && nms_ <= 1.f) ||
-      input_px_ < 32 || input_px_ % 32 != 0) {
+  if (!(confidence_ > 0.f && confidence_ < 1.f) || !(nms_ > 0.f && nms_ <= 1.f) || input_px_ < 32 ||
+      input_px_ % 32 != 0) {
     throw InvalidArgument(fmt::format(
         "detector settings: confidence {} must lie in (0, 1), nms {} in (0, 1], input {} px a "
         "multiple of 32",
@@ -59,10 +59,10 @@ std::vector<PersonBox> PersonDetector::detect(const cv::Mat& bgr) {
       const float h = row[3] * static_cast<float>(bgr.rows);
       const float x = row[0] * static_cast<float>(bgr.cols) - 0.5f * w;
       const float y = row[1] * static_cast<float>(bgr.rows) - 0.5f * h;
-      const cv::Rect box = cv::Rect(static_cast<int>(std::lround(x)), static_cast<int>(std::lround(y)),
-                                    static_cast<int>(std::lround(w)),
-                                    static_cast<int>(std::lround(h))) &
-                           image;
+      const cv::Rect box =
+          cv::Rect(static_cast<int>(std::lround(x)), static_cast<int>(std::lround(y)),
+                   static_cast<int>(std::lround(w)), static_cast<int>(std::lround(h))) &
+          image;
       if (box.area() == 0) continue;
       boxes.push_back(box);
       scores.push_back(score);

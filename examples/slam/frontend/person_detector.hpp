@@ -1,7 +1,8 @@
 #pragma once
 /// \file
 /// The dynamic-object prior: Yolo-Fastest 1.1 "body" (a 1.2 MB Darknet person detector, public
-/// domain) run with OpenCV's DNN module. It gives boxes, not silhouettes; the mask stage fills them.
+/// domain) run with OpenCV's DNN module. It gives boxes, not silhouettes; the mask stage fills
+/// them.
 
 #include "frontend/config.hpp"
 

@@ -17,15 +17,17 @@ cv::Mat degrade_mask(const cv::Mat& exact, int index, const MaskConfig& config) 
   }
   const int r = config.degraded_erosion_px;
   if (r > 0) {
-    const cv::Mat disc = cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(2 * r + 1, 2 * r + 1));
+    const cv::Mat disc =
+        cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(2 * r + 1, 2 * r + 1));
     cv::erode(exact, degraded, disc);
   } else {
     exact.copyTo(degraded);
   }
   const cv::Rect person = cv::boundingRect(exact);
   if (person.area() > 0 && config.degraded_unmasked_lower > 0.0) {
-    const int cut = person.y + static_cast<int>(std::lround((1.0 - config.degraded_unmasked_lower) *
-                                                            person.height));
+    const int cut =
+        person.y +
+        static_cast<int>(std::lround((1.0 - config.degraded_unmasked_lower) * person.height));
     if (cut < degraded.rows) {
       degraded.rowRange(std::max(cut, 0), degraded.rows).setTo(cv::Scalar(0));
     }
@@ -35,7 +37,8 @@ cv::Mat degrade_mask(const cv::Mat& exact, int index, const MaskConfig& config) 
 
 cv::Mat boxes_to_mask(const std::vector<PersonBox>& boxes, cv::Size size) {
   cv::Mat mask(size, CV_8UC1, cv::Scalar(0));
-  for (const PersonBox& b : boxes) mask(b.box & cv::Rect(cv::Point(0, 0), size)).setTo(cv::Scalar(255));
+  for (const PersonBox& b : boxes)
+    mask(b.box & cv::Rect(cv::Point(0, 0), size)).setTo(cv::Scalar(255));
   return mask;
 }
 
@@ -48,7 +51,8 @@ PersonMasker::PersonMasker(const MaskConfig& config) : config_(config) {
         config_.degraded_erosion_px, config_.degraded_missing_every,
         config_.degraded_unmasked_lower));
   }
-  if (config_.source == MaskSource::kDetector) detector_ = std::make_unique<PersonDetector>(config_);
+  if (config_.source == MaskSource::kDetector)
+    detector_ = std::make_unique<PersonDetector>(config_);
 }
 
 cv::Mat PersonMasker::mask(int index, const cv::Mat& bgr, const cv::Mat& label) {

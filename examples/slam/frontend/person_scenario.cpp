@@ -17,6 +17,9 @@ namespace hbos::slam {
 namespace {
 
 cv::Mat read_image(const std::string& path, int flags, int expected_type, const char* what) {
+  if (!std::filesystem::is_regular_file(path)) {
+    throw InvalidArgument(fmt::format("{} '{}' does not exist", what, path));
+  }
   cv::Mat image = cv::imread(path, flags);
   if (image.empty()) throw InvalidArgument(fmt::format("cannot read {} '{}'", what, path));
   if (image.type() != expected_type) {
@@ -36,9 +39,10 @@ PersonCutout load_person_cutout(const std::string& folder) {
   const cv::Mat raw =
       read_image(file("depth.png"), cv::IMREAD_UNCHANGED, CV_16UC1, "person depth image");
   if (cutout.mask.size() != cutout.bgr.size() || raw.size() != cutout.bgr.size()) {
-    throw InvalidArgument(fmt::format("person cut-out in '{}': rgb.png, mask.png and depth.png "
-                                      "differ in size",
-                                      folder));
+    throw InvalidArgument(
+        fmt::format("person cut-out in '{}': rgb.png, mask.png and depth.png "
+                    "differ in size",
+                    folder));
   }
   // Depth relative to the person's median keeps the body's shape when it is moved closer.
   std::vector<float> on_person;
@@ -50,7 +54,8 @@ PersonCutout load_person_cutout(const std::string& folder) {
     }
   }
   if (on_person.empty()) {
-    throw InvalidArgument(fmt::format("person mask '{}' has no pixel with depth", file("mask.png")));
+    throw InvalidArgument(
+        fmt::format("person mask '{}' has no pixel with depth", file("mask.png")));
   }
   const auto middle = on_person.begin() + static_cast<std::ptrdiff_t>(on_person.size() / 2);
   std::nth_element(on_person.begin(), middle, on_person.end());
@@ -61,7 +66,8 @@ PersonCutout load_person_cutout(const std::string& folder) {
 PersonCompositor::PersonCompositor(PersonCutout cutout, ScenarioConfig config)
     : cutout_(std::move(cutout)), config_(std::move(config)) {
   if (!(config_.depth_m > 0.0) || !std::isfinite(config_.depth_m)) {
-    throw InvalidArgument(fmt::format("person depth must be finite and > 0 m, got {}", config_.depth_m));
+    throw InvalidArgument(
+        fmt::format("person depth must be finite and > 0 m, got {}", config_.depth_m));
   }
   if (!std::isfinite(config_.start_x_px) || !std::isfinite(config_.speed_px_per_frame)) {
     throw InvalidArgument("person start and speed must be finite");
@@ -76,7 +82,8 @@ cv::Point PersonCompositor::position(int index, cv::Size image) const {
 cv::Mat PersonCompositor::composite(int index, cv::Mat& bgr, cv::Mat& depth_m) const {
   cv::Mat label(bgr.size(), CV_8UC1, cv::Scalar(0));
   const cv::Point origin = position(index, bgr.size());
-  const cv::Rect placed = cv::Rect(origin, cutout_.bgr.size()) & cv::Rect(cv::Point(0, 0), bgr.size());
+  const cv::Rect placed =
+      cv::Rect(origin, cutout_.bgr.size()) & cv::Rect(cv::Point(0, 0), bgr.size());
   const auto depth = static_cast<float>(config_.depth_m);
   for (int y = placed.y; y < placed.y + placed.height; ++y) {
     for (int x = placed.x; x < placed.x + placed.width; ++x) {

@@ -15,9 +15,9 @@ namespace hbos::slam {
 
 /// A person cut-out: colour, mask (255 = person) and depth, all the same size.
 struct PersonCutout {
-  cv::Mat bgr;              ///< 8-bit BGR
-  cv::Mat mask;             ///< CV_8U, 255 on the person
-  cv::Mat relative_depth;   ///< CV_32F, depth / median depth over the person; 0 = no measurement
+  cv::Mat bgr;             ///< 8-bit BGR
+  cv::Mat mask;            ///< CV_8U, 255 on the person
+  cv::Mat relative_depth;  ///< CV_32F, depth / median depth over the person; 0 = no measurement
 };
 
 /// Reads `rgb.png`, `mask.png` and `depth.png` (16-bit, 5000 per metre) of `folder`. Throws

@@ -13,8 +13,8 @@
 #include "eval/trajectory_io.hpp"
 #include "frontend/dataset.hpp"
 
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
+#include <CLI/CLI.hpp>
 #include <hbos/error.hpp>
 
 #include <opencv2/imgcodecs.hpp>
@@ -93,9 +93,11 @@ void prepare_fr1(const fs::path& source, const fs::path& out) {
   const double begin = std::min(rgb.front().stamp, depth.front().stamp) - kGroundTruthMargin;
   const double end = std::max(rgb.back().stamp, depth.back().stamp) + kGroundTruthMargin;
   std::ifstream gt(source / "groundtruth.txt");
-  if (!gt) throw InvalidArgument(fmt::format("cannot read '{}'", (source / "groundtruth.txt").string()));
+  if (!gt)
+    throw InvalidArgument(fmt::format("cannot read '{}'", (source / "groundtruth.txt").string()));
   std::string trimmed =
-      "# ground truth trajectory of TUM rgbd_dataset_freiburg1_xyz, trimmed to the 37 frames +- 1 s\n"
+      "# ground truth trajectory of TUM rgbd_dataset_freiburg1_xyz, trimmed to the 37 frames +- 1 "
+      "s\n"
       "# timestamp tx ty tz qx qy qz qw\n";
   std::string line;
   while (std::getline(gt, line)) {
@@ -106,8 +108,9 @@ void prepare_fr1(const fs::path& source, const fs::path& out) {
   hbos::slam::write_file_atomically(out / "groundtruth.txt", trimmed);
   // Read back: the trimmed file must still be a valid trajectory.
   static_cast<void>(hbos::slam::read_tum_trajectory((out / "groundtruth.txt").string()));
-  std::cout << fmt::format("fr1_xyz_37: {} colour, {} depth frames, ground truth {:.3f} .. {:.3f} s\n",
-                           rgb.size(), depth.size(), begin, end);
+  std::cout << fmt::format(
+      "fr1_xyz_37: {} colour, {} depth frames, ground truth {:.3f} .. {:.3f} s\n", rgb.size(),
+      depth.size(), begin, end);
 }
 
 // The person nearest to `seed` in the mask (0 = person): its bounding box and its own pixels.
@@ -136,7 +139,8 @@ void prepare_person(const fs::path& fr3, const fs::path& out, cv::Point seed) {
   }
   if (best == 0) throw InvalidArgument("no person found in the fr3 mask");
   const cv::Rect box(stats.at<int>(best, cv::CC_STAT_LEFT), stats.at<int>(best, cv::CC_STAT_TOP),
-                     stats.at<int>(best, cv::CC_STAT_WIDTH), stats.at<int>(best, cv::CC_STAT_HEIGHT));
+                     stats.at<int>(best, cv::CC_STAT_WIDTH),
+                     stats.at<int>(best, cv::CC_STAT_HEIGHT));
   const cv::Mat person = labels(box) == best;  // 255 on this person only
   cv::Mat depth_crop = depth(box).clone();
   write_image(out / "rgb.png", rgb(box).clone());
@@ -173,8 +177,10 @@ int main(int argc, char** argv) {
   app.add_option("--fr3", fr3, "folder with the fr3/walking_xyz rgb/, mask/, depth/")->required();
   app.add_option("--models", models, "folder with yolo-fastest-1.1_body/")->required();
   app.add_option("--out", out, "examples/slam/data")->required();
-  app.add_option("--seed-x", seed_x, "the person nearest this pixel is cut out")->capture_default_str();
-  app.add_option("--seed-y", seed_y, "the person nearest this pixel is cut out")->capture_default_str();
+  app.add_option("--seed-x", seed_x, "the person nearest this pixel is cut out")
+      ->capture_default_str();
+  app.add_option("--seed-y", seed_y, "the person nearest this pixel is cut out")
+      ->capture_default_str();
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

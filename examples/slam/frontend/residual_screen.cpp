@@ -61,15 +61,16 @@ const std::vector<std::string>& screen_strategy_names() {
 
 struct ResidualScreen::Impl {
   std::optional<hbos::ReprojectionScreend> screen;  // empty for "none"
-  hbos::Matches<double> matches;                           // reused every frame
+  hbos::Matches<double> matches;                    // reused every frame
   std::vector<std::size_t> match_of;                // hbos match k -> caller's match index
 };
 
 ResidualScreen::ResidualScreen(const ScreenStageConfig& config)
     : config_(config), impl_(std::make_unique<Impl>()) {
   if (config_.rounds < 1 || config_.min_inliers < 3) {
-    throw InvalidArgument(fmt::format("screen settings: rounds {} must be >= 1, min inliers {} >= 3",
-                                      config_.rounds, config_.min_inliers));
+    throw InvalidArgument(
+        fmt::format("screen settings: rounds {} must be >= 1, min inliers {} >= 3", config_.rounds,
+                    config_.min_inliers));
   }
   if (auto strategy = strategy_for(config_.strategy)) impl_->screen.emplace(std::move(*strategy));
 }
@@ -126,7 +127,8 @@ ScreenOutcome ResidualScreen::screen(const std::vector<Eigen::Vector3d>& points_
     }
     refiner.refine(points_prev, observed, sigma, use, T_cur_prev);
     for (Eigen::Index k = 0; k < m.size(); ++k) {
-      const Eigen::Vector3d p = T_cur_prev * points_prev[impl_->match_of[static_cast<std::size_t>(k)]];
+      const Eigen::Vector3d p =
+          T_cur_prev * points_prev[impl_->match_of[static_cast<std::size_t>(k)]];
       // A point pushed behind the camera keeps its old prediction (and will be judged on it).
       if (p.z() > 0.0) m.set_predicted(k, camera.project(p));
     }

@@ -14,6 +14,7 @@
 #include <Eigen/Geometry>
 
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -28,13 +29,13 @@ struct ScreenOutcome {
   std::vector<std::uint8_t> inlier;  ///< 1 = kept
   std::vector<double> magnitude;     ///< the residual feature decided on (see `statistic`)
   std::vector<double> score;         ///< the strategy's score, higher = worse
-  double threshold = 0.0;            ///< cut on the score
+  double threshold = std::numeric_limits<double>::quiet_NaN();  ///< cut on the score; NaN: none
   /// The cut in magnitude units where the strategy is a gate on the magnitude (fixed, chi2,
   /// quantile, mad); NaN for HBOS, whose cut is on a histogram score.
-  double magnitude_cut = 0.0;
-  std::string statistic;  ///< "residual_px", "residual_whitened", "magnitude", ...
-  std::string unit;       ///< "px" or "px/sigma"
-  int rounds = 0;         ///< screenings run
+  double magnitude_cut = std::numeric_limits<double>::quiet_NaN();
+  std::string statistic;   ///< "residual_px", "residual_whitened", "magnitude", ...
+  std::string unit;        ///< "px" or "px/sigma"
+  int rounds = 0;          ///< screenings run
   double screen_us = 0.0;  ///< [us] time spent screening (refinement rounds excluded)
   double refine_us = 0.0;  ///< [us] time of the refinements between rounds
 };

@@ -13,11 +13,11 @@ RoughPoseEstimator::RoughPoseEstimator(const RoughPoseConfig& config, hbos::Pinh
   if (!(config_.ransac_threshold_px > 0.0) || config_.ransac_iterations < 1 ||
       !(config_.ransac_confidence > 0.0 && config_.ransac_confidence < 1.0) ||
       config_.min_inliers < 4) {
-    throw InvalidArgument(fmt::format(
-        "rough pose settings: RANSAC threshold {} px must be > 0, iterations {} >= 1, "
-        "confidence {} in (0, 1), min inliers {} >= 4",
-        config_.ransac_threshold_px, config_.ransac_iterations, config_.ransac_confidence,
-        config_.min_inliers));
+    throw InvalidArgument(
+        fmt::format("rough pose settings: RANSAC threshold {} px must be > 0, iterations {} >= 1, "
+                    "confidence {} in (0, 1), min inliers {} >= 4",
+                    config_.ransac_threshold_px, config_.ransac_iterations,
+                    config_.ransac_confidence, config_.min_inliers));
   }
 }
 
@@ -52,7 +52,8 @@ RoughPose RoughPoseEstimator::estimate(const std::vector<Eigen::Vector3d>& point
   Eigen::Matrix3d rotation;
   cv::cv2eigen(cv::Mat(R), rotation);
   pose.T_cur_prev.linear() = rotation;
-  pose.T_cur_prev.translation() = Eigen::Vector3d(tvec.at<double>(0), tvec.at<double>(1), tvec.at<double>(2));
+  pose.T_cur_prev.translation() =
+      Eigen::Vector3d(tvec.at<double>(0), tvec.at<double>(1), tvec.at<double>(2));
   pose.from_ransac = true;
   pose.ransac_inliers = static_cast<int>(inliers.size());
   return pose;

@@ -22,8 +22,8 @@ nlohmann::json number_or_null(double value) {
 }
 
 nlohmann::json statistics_json(const ErrorStatistics& s, double scale) {
-  return {{"rmse", s.rmse * scale},     {"mean", s.mean * scale}, {"median", s.median * scale},
-          {"std", s.std_dev * scale},   {"min", s.min * scale},   {"max", s.max * scale},
+  return {{"rmse", s.rmse * scale},   {"mean", s.mean * scale}, {"median", s.median * scale},
+          {"std", s.std_dev * scale}, {"min", s.min * scale},   {"max", s.max * scale},
           {"count", s.count}};
 }
 
@@ -36,14 +36,14 @@ const char* scenario_name(const ScenarioConfig& scenario) {
 std::string stats_csv(const std::vector<FrameStats>& stats) {
   std::string csv =
       "frame,stamp,features,matches,person_matches,survivors,person_survivors,static_dropped,"
-      "rough_pose,ransac_inliers,tracked,threshold,screen_us,refine_us\n";
+      "rough_pose,ransac_inliers,tracked,threshold,screen_us,refine_us,mask_us\n";
   for (const FrameStats& s : stats) {
-    csv += fmt::format("{},{:.6f},{},{},{},{},{},{},{},{},{},{},{:.1f},{:.1f}\n", s.index, s.stamp,
-                       s.features, s.matches, s.person_matches, s.survivors, s.person_survivors,
-                       s.static_dropped, s.rough_from_ransac ? "ransac" : "constant-velocity",
-                       s.ransac_inliers, s.tracked ? 1 : 0,
-                       std::isfinite(s.threshold) ? fmt::format("{:.6g}", s.threshold) : "",
-                       s.screen_us, s.refine_us);
+    csv += fmt::format(
+        "{},{:.6f},{},{},{},{},{},{},{},{},{},{},{:.1f},{:.1f},{:.1f}\n", s.index, s.stamp,
+        s.features, s.matches, s.person_matches, s.survivors, s.person_survivors, s.static_dropped,
+        s.rough_from_ransac ? "ransac" : "constant-velocity", s.ransac_inliers, s.tracked ? 1 : 0,
+        std::isfinite(s.threshold) ? fmt::format("{:.6g}", s.threshold) : "", s.screen_us,
+        s.refine_us, s.mask_us);
   }
   return csv;
 }
@@ -78,6 +78,7 @@ nlohmann::json summary_json(const RunResult& run, const Config& config,
   j["static_match_loss_share"] = t.static_loss_share;
   j["mean_screen_us"] = t.mean_screen_us;
   j["mean_refine_us"] = t.mean_refine_us;
+  j["mean_mask_us"] = t.mean_mask_us;
   if (run.evaluation) {
     const Evaluation& e = *run.evaluation;
     j["ate_m"] = statistics_json(e.ate.stats, 1.0);
@@ -116,10 +117,9 @@ std::vector<std::string> write_run_outputs(const std::string& dir, const RunResu
   written.push_back(path("summary.json"));
 
   if (run.figure) {
-    const std::string what =
-        fmt::format("frame {} | {} scenario, mask {}, screen {}", run.figure->frame.index,
-                    scenario_name(config.scenario), to_string(config.mask.source),
-                    config.screen.strategy);
+    const std::string what = fmt::format("frame {} | {} scenario, mask {}, screen {}",
+                                         run.figure->frame.index, scenario_name(config.scenario),
+                                         to_string(config.mask.source), config.screen.strategy);
     write_png(path("matches.png"), draw_match_figure(*run.figure, what));
     written.push_back(path("matches.png"));
     if (!run.figure->result.screen.magnitude.empty()) {

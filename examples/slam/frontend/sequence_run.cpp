@@ -12,6 +12,7 @@ RunTotals total_of(const std::vector<FrameStats>& stats) {
   int screened = 0;
   for (const FrameStats& s : stats) {
     ++t.frames;
+    t.mean_mask_us += s.mask_us;
     t.frames_tracked += s.tracked ? 1 : 0;
     t.frames_rough_ransac += s.rough_from_ransac ? 1 : 0;
     t.matches += s.matches;
@@ -30,8 +31,10 @@ RunTotals total_of(const std::vector<FrameStats>& stats) {
         static_cast<double>(t.person_survivors) / static_cast<double>(t.person_matches);
   }
   if (t.static_matches > 0) {
-    t.static_loss_share = static_cast<double>(t.static_dropped) / static_cast<double>(t.static_matches);
+    t.static_loss_share =
+        static_cast<double>(t.static_dropped) / static_cast<double>(t.static_matches);
   }
+  if (t.frames > 0) t.mean_mask_us /= t.frames;
   if (screened > 0) {
     t.mean_screen_us = screen_us / screened;
     t.mean_refine_us = refine_us / screened;

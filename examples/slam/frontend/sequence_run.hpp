@@ -23,8 +23,8 @@ namespace hbos::slam {
 /// Totals over a run's frames.
 struct RunTotals {
   int frames = 0;
-  int frames_tracked = 0;          ///< frames with enough matches for a pose
-  int frames_rough_ransac = 0;     ///< frames whose rough pose came from RANSAC
+  int frames_tracked = 0;       ///< frames with enough matches for a pose
+  int frames_rough_ransac = 0;  ///< frames whose rough pose came from RANSAC
   long matches = 0;
   long person_matches = 0;
   long person_survivors = 0;
@@ -35,6 +35,7 @@ struct RunTotals {
   double static_loss_share = 0.0;  ///< static_dropped / static_matches
   double mean_screen_us = 0.0;     ///< [us] per frame with a screen (frames after the first)
   double mean_refine_us = 0.0;     ///< [us] per frame
+  double mean_mask_us = 0.0;  ///< [us] per frame (all frames): the mask stage, detector included
 };
 
 [[nodiscard]] RunTotals total_of(const std::vector<FrameStats>& stats);
@@ -46,12 +47,12 @@ struct FigureFrame {
 };
 
 struct RunResult {
-  std::vector<double> stamps;                 ///< [s] one per frame
-  std::vector<Eigen::Isometry3d> poses;       ///< T_world_camera, the first frame = identity
+  std::vector<double> stamps;            ///< [s] one per frame
+  std::vector<Eigen::Isometry3d> poses;  ///< T_world_camera, the first frame = identity
   std::vector<FrameStats> stats;
   RunTotals totals;
-  std::optional<FigureFrame> figure;          ///< the frame chosen for the figures
-  std::optional<Evaluation> evaluation;       ///< when the sequence has ground truth
+  std::optional<FigureFrame> figure;     ///< the frame chosen for the figures
+  std::optional<Evaluation> evaluation;  ///< when the sequence has ground truth
 };
 
 /// Tracks frames 0 .. n-1 given by `frame_at` with a fresh Tracker. The figure frame is

@@ -10,8 +10,8 @@
 #include "frontend/run_outputs.hpp"
 #include "frontend/sequence_run.hpp"
 
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
+#include <CLI/CLI.hpp>
 #include <hbos/error.hpp>
 
 #include <filesystem>
@@ -39,7 +39,8 @@ struct CommandOptions {
 
 void add_options(CLI::App& app, CommandOptions& o) {
   Config& c = o.config;
-  app.add_option("--dataset", c.dataset.path, "TUM RGB-D folder (rgb.txt, depth.txt[, groundtruth.txt])")
+  app.add_option("--dataset", c.dataset.path,
+                 "TUM RGB-D folder (rgb.txt, depth.txt[, groundtruth.txt])")
       ->capture_default_str();
   app.add_option("--camera", c.dataset.camera,
                  "intrinsics: preset tum1 | tum3, or a .yaml/.yml/.json file")
@@ -51,7 +52,8 @@ void add_options(CLI::App& app, CommandOptions& o) {
                  "static: the sequence as recorded; person: a real person composited in")
       ->capture_default_str()
       ->check(CLI::IsMember({"static", "person"}));
-  app.add_option("--person-dir", c.scenario.person_dir, "person cut-out (rgb.png, mask.png, depth.png)")
+  app.add_option("--person-dir", c.scenario.person_dir,
+                 "person cut-out (rgb.png, mask.png, depth.png)")
       ->capture_default_str();
   app.add_option("--person-depth", c.scenario.depth_m, "median depth of the person [m]")
       ->capture_default_str()
@@ -76,7 +78,8 @@ void add_options(CLI::App& app, CommandOptions& o) {
   app.add_option("--rough-pose", o.rough_pose, "how the rough pose is found")
       ->capture_default_str()
       ->check(CLI::IsMember({"ransac", "constant-velocity"}));
-  app.add_option("--ransac-px", c.rough_pose.ransac_threshold_px, "PnP RANSAC inlier threshold [px]")
+  app.add_option("--ransac-px", c.rough_pose.ransac_threshold_px,
+                 "PnP RANSAC inlier threshold [px]")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
   app.add_option("--features", c.extraction.features, "ORB features per frame")
@@ -115,17 +118,18 @@ int run_single(const CommandOptions& o, const CameraModel& camera, const RgbdSeq
   }
 
   const RunTotals& t = run.totals;
-  out << fmt::format("hbos-slam: {} frames of {} | {} scenario, mask {}, screen {}, rough pose {}\n",
-                     n, config.dataset.path, scenario_name(config.scenario),
-                     to_string(config.mask.source), config.screen.strategy,
-                     to_string(config.rough_pose.method));
+  out << fmt::format(
+      "hbos-slam: {} frames of {} | {} scenario, mask {}, screen {}, rough pose {}\n", n,
+      config.dataset.path, scenario_name(config.scenario), to_string(config.mask.source),
+      config.screen.strategy, to_string(config.rough_pose.method));
   if (run.evaluation) {
     const Evaluation& e = *run.evaluation;
-    out << fmt::format("  ATE RMSE {:.2f} cm (mean {:.2f}, max {:.2f}) over {} poses", 100.0 * e.ate.stats.rmse,
-                       100.0 * e.ate.stats.mean, 100.0 * e.ate.stats.max, e.ate.stats.count);
+    out << fmt::format("  ATE RMSE {:.2f} cm (mean {:.2f}, max {:.2f}) over {} poses",
+                       100.0 * e.ate.stats.rmse, 100.0 * e.ate.stats.mean, 100.0 * e.ate.stats.max,
+                       e.ate.stats.count);
     if (e.rpe) {
-      out << fmt::format("; RPE {:.2f} mm/frame, {:.3f} deg/frame (RMSE)", 1000.0 * e.rpe->trans_m.rmse,
-                         e.rpe->rot_deg.rmse);
+      out << fmt::format("; RPE {:.2f} mm/frame, {:.3f} deg/frame (RMSE)",
+                         1000.0 * e.rpe->trans_m.rmse, e.rpe->rot_deg.rmse);
     }
     out << "\n";
   } else {
@@ -133,10 +137,12 @@ int run_single(const CommandOptions& o, const CameraModel& camera, const RgbdSeq
   }
   out << fmt::format(
       "  matches {:.0f}/frame; person matches kept {} ({} of {}); static matches lost {:.1f} %; "
-      "screen {:.0f} us/frame, refinement {:.0f} us/frame; {} of {} frames tracked\n",
+      "screen {:.0f} us/frame, refinement {:.0f} us/frame, mask {:.1f} ms/frame; {} of {} frames "
+      "tracked\n",
       t.frames > 1 ? static_cast<double>(t.matches) / (t.frames - 1) : 0.0,
       percent_or_na(t.person_survival_share), t.person_survivors, t.person_matches,
-      100.0 * t.static_loss_share, t.mean_screen_us, t.mean_refine_us, t.frames_tracked, t.frames);
+      100.0 * t.static_loss_share, t.mean_screen_us, t.mean_refine_us, t.mean_mask_us / 1000.0,
+      t.frames_tracked, t.frames);
   try {
     for (const std::string& path :
          write_run_outputs(config.output.dir, run, config, camera.name, groundtruth)) {
@@ -152,7 +158,8 @@ int run_single(const CommandOptions& o, const CameraModel& camera, const RgbdSeq
 int run_ablation_command(const CommandOptions& o, const CameraModel& camera,
                          const RgbdSequence& sequence, std::ostream& out, std::ostream& err) {
   const Config& config = o.config;
-  const std::vector<AblationRow> rows = run_ablation(config, sequence, camera, o.quiet ? nullptr : &err);
+  const std::vector<AblationRow> rows =
+      run_ablation(config, sequence, camera, o.quiet ? nullptr : &err);
   int n = static_cast<int>(sequence.size());
   if (config.dataset.max_frames > 0) n = std::min(n, config.dataset.max_frames);
   const std::string md = ablation_markdown(rows, config, camera.name, n);
@@ -160,7 +167,8 @@ int run_ablation_command(const CommandOptions& o, const CameraModel& camera,
   try {
     std::error_code error;
     std::filesystem::create_directories(config.output.dir, error);
-    if (error) throw std::runtime_error("cannot create '" + config.output.dir + "': " + error.message());
+    if (error)
+      throw std::runtime_error("cannot create '" + config.output.dir + "': " + error.message());
     const auto md_path = (std::filesystem::path(config.output.dir) / "ablation.md").string();
     const auto csv_path = (std::filesystem::path(config.output.dir) / "ablation.csv").string();
     write_file_atomically(md_path, md);
@@ -198,8 +206,8 @@ int run_slam_command(int argc, const char* const* argv, std::ostream& out, std::
   options.config.output.progress = !options.quiet;
   try {
     const CameraModel camera = load_camera(options.config.dataset.camera);
-    const RgbdSequence sequence =
-        load_tum_sequence(options.config.dataset.path, options.config.dataset.max_association_difference);
+    const RgbdSequence sequence = load_tum_sequence(
+        options.config.dataset.path, options.config.dataset.max_association_difference);
     return options.ablation ? run_ablation_command(options, camera, sequence, out, err)
                             : run_single(options, camera, sequence, out, err);
   } catch (const InvalidArgument& e) {

@@ -22,6 +22,7 @@ TrackResult Tracker::track(const Frame& frame) {
   FrameStats& stats = out.stats;
   stats.index = frame.index;
   stats.stamp = frame.stamp;
+  stats.mask_us = frame.mask_us;
 
   // 1. ORB features outside the dynamic-object mask.
   Features current = extractor_.extract(frame);
@@ -75,7 +76,8 @@ TrackResult Tracker::track(const Frame& frame) {
       const auto start = std::chrono::steady_clock::now();
       refiner_.refine(points_prev, observed, sigma, out.screen.inlier, T_cur_prev);
       out.screen.refine_us +=
-          std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
+          std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start)
+              .count();
     }
   }
 

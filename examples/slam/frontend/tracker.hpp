@@ -15,6 +15,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include <limits>
 #include <optional>
 #include <vector>
 
@@ -24,19 +25,20 @@ namespace hbos::slam {
 /// person (the label); all others count as static.
 struct FrameStats {
   int index = 0;
-  double stamp = 0.0;             ///< [s]
-  int features = 0;               ///< ORB keypoints extracted (outside the mask)
-  int matches = 0;                ///< matches screened
-  int person_matches = 0;         ///< of them, labelled dynamic
-  int survivors = 0;              ///< kept by the screen
-  int person_survivors = 0;       ///< labelled dynamic and kept
-  int static_dropped = 0;         ///< static and rejected
+  double stamp = 0.0;              ///< [s]
+  int features = 0;                ///< ORB keypoints extracted (outside the mask)
+  int matches = 0;                 ///< matches screened
+  int person_matches = 0;          ///< of them, labelled dynamic
+  int survivors = 0;               ///< kept by the screen
+  int person_survivors = 0;        ///< labelled dynamic and kept
+  int static_dropped = 0;          ///< static and rejected
   bool rough_from_ransac = false;  ///< false: constant velocity (by choice or fallback)
   int ransac_inliers = 0;
-  bool tracked = false;           ///< enough matches to estimate a pose (else constant velocity)
-  double threshold = 0.0;         ///< the screen's cut on its score (NaN for none)
-  double screen_us = 0.0;         ///< [us] screening time, refinement excluded
-  double refine_us = 0.0;         ///< [us] pose refinement time (between rounds and final)
+  bool tracked = false;    ///< enough matches to estimate a pose (else constant velocity)
+  double threshold = std::numeric_limits<double>::quiet_NaN();  ///< the screen's cut; NaN: none
+  double screen_us = 0.0;  ///< [us] screening time, refinement excluded
+  double refine_us = 0.0;  ///< [us] pose refinement time (between rounds and final)
+  double mask_us = 0.0;    ///< [us] time to compute the frame's dynamic-object mask
 };
 
 /// One screened match, for figures.
@@ -50,8 +52,8 @@ struct MatchRecord {
 struct TrackResult {
   Eigen::Isometry3d T_world_camera = Eigen::Isometry3d::Identity();
   FrameStats stats;
-  ScreenOutcome screen;               ///< empty on the first frame
-  std::vector<MatchRecord> matches;   ///< same order as screen's vectors
+  ScreenOutcome screen;              ///< empty on the first frame
+  std::vector<MatchRecord> matches;  ///< same order as screen's vectors
 };
 
 /// Not thread-safe; one per sequence.

@@ -145,15 +145,19 @@ class BucketedColumn {
     const Eigen::Index per_coarse = Eigen::Index{1} << shift;
     shift_ = shift;
     lo_ = lo;
-    cells_ = kCoarse * per_coarse;
-    scale_ = static_cast<double>(cells_) / (hi - lo);
+    scale_ = static_cast<double>(kCoarse * per_coarse) / (hi - lo);
+    if (!std::isfinite(scale_)) scale_ = 0.0;  // a range of denormals: one cell
+    // Values lie in [lo, hi], where value_cell() is monotone, so cells = value_cell(hi) + 1 bounds
+    // them (rounding may add one cell past the nominal count) without a clamp.
+    cells_ = value_cell(hi) + 1;
+    coarse_cells_ = ((cells_ - 1) >> shift) + 1;
     const auto size = static_cast<std::size_t>(n);
 
     // Pass 1: the coarse histogram.
-    coarse_start_.assign(static_cast<std::size_t>(kCoarse + 1), 0);
+    coarse_start_.assign(static_cast<std::size_t>(coarse_cells_ + 1), 0);
     for (Eigen::Index i = 0; i < n; ++i) {
       ++coarse_start_[static_cast<std::size_t>(
-          (cell(static_cast<double>(column[i * stride])) >> shift) + 1)];
+          (value_cell(static_cast<double>(column[i * stride])) >> shift) + 1)];
     }
     for (std::size_t k = 1; k < coarse_start_.size(); ++k) coarse_start_[k] += coarse_start_[k - 1];
 
@@ -163,26 +167,27 @@ class BucketedColumn {
     for (Eigen::Index i = 0; i < n; ++i) {
       const Scalar x = column[i * stride];
       staged_[static_cast<std::size_t>(
-          cursor_[static_cast<std::size_t>(cell(static_cast<double>(x)) >> shift)]++)] = x;
+          cursor_[static_cast<std::size_t>(value_cell(static_cast<double>(x)) >> shift)]++)] = x;
     }
 
     // Pass 3: inside each coarse cell, a counting sort by fine cell.
     start_.assign(static_cast<std::size_t>(cells_ + 1), 0);
     values_.resize(size);
-    for (Eigen::Index k = 0; k < kCoarse; ++k) {
+    for (Eigen::Index k = 0; k < coarse_cells_; ++k) {
       const Eigen::Index first = coarse_start_[static_cast<std::size_t>(k)];
       const Eigen::Index last = coarse_start_[static_cast<std::size_t>(k + 1)];
       const Eigen::Index base = k * per_coarse;
+      const Eigen::Index fine = std::min(per_coarse, cells_ - base);  // the last may be short
       Eigen::Index* start = start_.data() + base;  // this coarse cell's fine starts
       for (Eigen::Index i = first; i < last; ++i) {
-        ++start[cell(static_cast<double>(staged_[static_cast<std::size_t>(i)])) - base + 1];
+        ++start[value_cell(static_cast<double>(staged_[static_cast<std::size_t>(i)])) - base + 1];
       }
-      start[0] = first;
-      for (Eigen::Index t = 1; t < per_coarse; ++t) start[t] += start[t - 1];
-      cursor_.assign(start, start + per_coarse);
+      start[0] = first;  // (start[fine] is the next coarse cell's start[0], set in its turn)
+      for (Eigen::Index t = 1; t < fine; ++t) start[t] += start[t - 1];
+      cursor_.assign(start, start + fine);
       for (Eigen::Index i = first; i < last; ++i) {
         const Scalar x = staged_[static_cast<std::size_t>(i)];
-        const auto t = static_cast<std::size_t>(cell(static_cast<double>(x)) - base);
+        const auto t = static_cast<std::size_t>(value_cell(static_cast<double>(x)) - base);
         values_[static_cast<std::size_t>(cursor_[t]++)] = x;
       }
     }
@@ -195,10 +200,11 @@ class BucketedColumn {
     }
   }
 
-  static constexpr Eigen::Index kCoarse = 256;
+  /// The number of coarse cells (256, or 257 when rounding puts the maximum one past).
+  [[nodiscard]] Eigen::Index coarse_cells() const { return coarse_cells_; }
 
-  /// The coarse cell of e, in [0, kCoarse); monotone in e. Queries grouped by coarse cell touch
-  /// one cache-sized slice of the column.
+  /// The coarse cell of e, in [0, coarse_cells()); monotone in e. Queries grouped by coarse cell
+  /// touch one cache-sized slice of the column.
   [[nodiscard]] Eigen::Index coarse_cell(double e) const { return cell(e) >> shift_; }
 
   /// #{values < e}.
@@ -219,14 +225,21 @@ class BucketedColumn {
   }
 
  private:
+  static constexpr Eigen::Index kCoarse = 256;
   static constexpr Eigen::Index kScanLimit = 64;
 
+  /// Cell of a value of the column (in [lo, hi]): no clamp needed, see reset().
+  [[nodiscard]] Eigen::Index value_cell(double v) const {
+    return static_cast<Eigen::Index>((v - lo_) * scale_);
+  }
+  /// Cell of any query, clamped to the cells; equal to value_cell() on [lo, hi], so monotone.
   [[nodiscard]] Eigen::Index cell(double v) const { return bin_guess(v, lo_, scale_, cells_ - 1); }
 
   int shift_ = 0;
   double lo_ = 0.0;
   double scale_ = 0.0;
   Eigen::Index cells_ = 1;
+  Eigen::Index coarse_cells_ = 1;
   std::vector<Eigen::Index> start_;  // first position of each fine cell in values_, then n
   std::vector<Eigen::Index> coarse_start_;
   std::vector<Eigen::Index> cursor_;
@@ -321,7 +334,7 @@ struct AutoBinsScratch {
 /// of them, is then located in O(1) expected time, visiting the edges coarse cell by coarse cell
 /// (a merge of the candidates' sorted edge lists) so that the column is read once, in order.
 /// PyOD re-histograms the column for every b: O(n sqrt(n)).
-/// `min_value`/`max_value` are the column's extremes; requires n >= 4.
+/// `min_value`/`max_value` are the column's extremes; requires n >= 4 and no NaN.
 template <class Scalar>
 [[nodiscard]] Eigen::Index pyod_optimal_bins(const Scalar* column, Eigen::Index stride,
                                              Eigen::Index n, double min_value, double max_value,
@@ -342,7 +355,7 @@ template <class Scalar>
     scratch.next_edge[static_cast<std::size_t>(b)] = e;
     scratch.next_coarse[static_cast<std::size_t>(b)] = sorted.coarse_cell(e);
   }
-  for (Eigen::Index cell = 0; cell < BucketedColumn<Scalar>::kCoarse; ++cell) {
+  for (Eigen::Index cell = 0; cell < sorted.coarse_cells(); ++cell) {
     for (Eigen::Index b = 2; b <= last; ++b) {
       const auto ub = static_cast<std::size_t>(b);
       Eigen::Index& k = scratch.next_k[ub];
