@@ -294,7 +294,7 @@ class PyodHbos {
     Eigen::Index cells = 1;
     std::vector<Cell> grid;
 
-    [[nodiscard]] Eigen::Index bins() const { return densities.size(); }
+    [[nodiscard]] Eigen::Index bins() const { return edges.size() - 1; }  // set first
 
     /// Cell of x in [lo, hi]: in [0, cells), since it is monotone in x and cells = cell(hi) + 1.
     [[nodiscard]] Eigen::Index cell(double x) const {
@@ -341,8 +341,8 @@ class PyodHbos {
     return features_[static_cast<std::size_t>(j)];
   }
 
-  /// Smallest and largest value of a column. With a NaN in the column either may be NaN or
-  /// not (Eigen's fast reductions); the callers check both and the counting pass finds the rest.
+  /// Smallest and largest value of a column. With a NaN in the column the result is unspecified
+  /// (Eigen's fast reductions): the counting pass checks every value against it.
   [[nodiscard]] static std::pair<double, double> column_range(const Scalar* column,
                                                               Eigen::Index stride, Eigen::Index n) {
     using Column = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
@@ -376,11 +376,13 @@ class PyodHbos {
     for (Eigen::Index j = 0; j < X.cols; ++j) {
       const Scalar* column = X.data + j * X.col_stride;
       const auto [lo, hi] = column_range(column, X.row_stride, n);
-      // min/max skip NaN; the counting pass finds it, but the auto search must not see one.
+      // An infinity shows in min/max; a NaN is caught by the counting pass, but the auto search
+      // must not see one, so it looks first.
       bool finite = std::isfinite(lo) && std::isfinite(hi);
       if (finite && params.auto_bins) {
-        for (Eigen::Index i = 0; i < n; ++i)
-          finite = finite && !std::isnan(column[i * X.row_stride]);
+        Eigen::Index nans = 0;
+        for (Eigen::Index i = 0; i < n; ++i) nans += std::isnan(column[i * X.row_stride]) ? 1 : 0;
+        finite = nans == 0;
       }
       if (!finite) detail::require_finite_entry(X, "X");
       const Eigen::Index B =
@@ -470,24 +472,34 @@ class PyodHbos {
     // chains of increments of one counter.
     std::vector<Eigen::Index> counts(static_cast<std::size_t>(4 * B), 0);
     Eigen::Index non_finite = 0;
-    detail::with_stride(stride, [&](auto step) {
-      const CellBins* cells = cell_bins.data();
-      Eigen::Index* count = counts.data();
-      Eigen::Index* const count_end = count + 4 * B;
-      for (Eigen::Index i = 0; i < n; ++i) {
-        const double x = static_cast<double>(column[i * step]);
-        if (std::isnan(x)) {  // the only value outside [min, max]
-          ++non_finite;
-          continue;
-        }
-        const CellBins cell = cells[f.cell(x)];
-        Eigen::Index counted = cell.first_bin + (cell.edge <= x ? 1 : 0);
-        Eigen::Index scored = cell.first_bin + (cell.edge < x ? 1 : 0);
-        if (cell.first_bin < 0) f.exact_bins(x, counted, scored);
-        ++count[counted];
-        count = count + B == count_end ? counts.data() : count + B;
-        scored_bins[i] = static_cast<std::uint16_t>(scored);  // truncated if B > kMaxStoredBins
+    auto count_one = [&](double x, Eigen::Index* count, std::uint16_t* scored_bin) {
+      // Outside [lo, hi] only with a NaN in the column: then Eigen's fast min/max may even have
+      // skipped the true extremes. The column is rescanned for the NaN below.
+      if (!(x >= f.lo && x <= f.hi)) {
+        ++non_finite;
+        return;
       }
+      const CellBins cell = cell_bins[static_cast<std::size_t>(f.cell(x))];
+      Eigen::Index counted = cell.first_bin + (cell.edge <= x ? 1 : 0);
+      Eigen::Index scored = cell.first_bin + (cell.edge < x ? 1 : 0);
+      if (cell.first_bin < 0) f.exact_bins(x, counted, scored);
+      ++count[counted];
+      *scored_bin = static_cast<std::uint16_t>(scored);  // truncated when B > kMaxStoredBins
+    };
+    detail::with_stride(stride, [&](auto step) {
+      Eigen::Index* c0 = counts.data();
+      Eigen::Index* c1 = c0 + B;
+      Eigen::Index* c2 = c1 + B;
+      Eigen::Index* c3 = c2 + B;
+      auto at = [&](Eigen::Index i) { return static_cast<double>(column[i * step]); };
+      Eigen::Index i = 0;
+      for (; i + 4 <= n; i += 4) {
+        count_one(at(i), c0, scored_bins + i);
+        count_one(at(i + 1), c1, scored_bins + i + 1);
+        count_one(at(i + 2), c2, scored_bins + i + 2);
+        count_one(at(i + 3), c3, scored_bins + i + 3);
+      }
+      for (; i < n; ++i) count_one(at(i), c0, scored_bins + i);
     });
     for (Eigen::Index i = 0; non_finite > 0 && i < n; ++i) {
       detail::require(std::isfinite(column[i * stride]), "X(", i, ", ", j,

@@ -110,18 +110,18 @@ class ReprojectionScreen {
   using Index = Eigen::Index;
 
   /// \throws InvalidArgument if the config is invalid.
-  explicit ReprojectionScreen(ScreenConfig config = {}) : config_(std::move(config)) {
+  explicit ReprojectionScreen(const ScreenConfig& config = {}) : config_(config) {
     detail::validate(config_);
   }
   /// Convenience: a strategy with the default screen-wide settings.
-  explicit ReprojectionScreen(ScreenStrategy strategy)
-      : ReprojectionScreen(ScreenConfig{std::move(strategy)}) {}
+  explicit ReprojectionScreen(const ScreenStrategy& strategy)
+      : ReprojectionScreen(ScreenConfig{strategy}) {}
 
   [[nodiscard]] const ScreenConfig& config() const { return config_; }
   /// Replaces the config (validated); buffers are kept.
-  void set_config(ScreenConfig config) {
+  void set_config(const ScreenConfig& config) {
     detail::validate(config);
-    config_ = std::move(config);
+    config_ = config;
   }
 
   /// Screens one frame. The result stays valid until the next call on this object.
