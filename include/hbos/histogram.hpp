@@ -216,17 +216,23 @@ class Histogram {
 
   /// Re-fits this histogram to `column` in place, reusing its storage and `scratch`: no heap
   /// allocation once the buffers have grown to the sizes needed. `feature` labels errors.
+  ///
+  /// With `bin_index` (room for column.size() entries), the bin each training value was counted
+  /// in is recorded there when the binning allows it cheaply (equal or fixed width, not
+  /// periodic); the return value says whether it was. Scoring the training values from those
+  /// indices then needs no lookup at all (the Workspace does this).
   /// \throws InvalidArgument if the column is empty or holds a non-finite value.
   template <class Column>
-  void refit(const Column& column, const FeatureSpec& spec, const ScoringOptions& options,
-             std::vector<Scalar>& scratch, Index feature = 0) {
+  bool refit(const Column& column, const FeatureSpec& spec, const ScoringOptions& options,
+             std::vector<Scalar>& scratch, Index feature = 0, std::uint32_t* bin_index = nullptr) {
     const detail::ColumnView<Scalar> view = detail::view_of(column, scratch);
-    refit_view(view, spec, options, scratch, feature);
+    return refit_view(view, spec, options, scratch, feature, bin_index);
   }
 
  private:
-  void refit_view(const detail::ColumnView<Scalar>& x, const FeatureSpec& spec,
-                  const ScoringOptions& options, std::vector<Scalar>& scratch, Index feature);
+  bool refit_view(const detail::ColumnView<Scalar>& x, const FeatureSpec& spec,
+                  const ScoringOptions& options, std::vector<Scalar>& scratch, Index feature,
+                  std::uint32_t* bin_index);
 
   [[nodiscard]] Scalar wrap(Scalar x) const {
     Scalar t = x - lo_;
@@ -251,7 +257,7 @@ class Histogram {
   void place_uniform_edges(const detail::ColumnView<Scalar>& x, const FeatureSpec& spec,
                            std::vector<Scalar>& scratch, Index feature);
   void place_equal_frequency_edges(const Scalar* sorted, Index n, Index k);
-  void count(const detail::ColumnView<Scalar>& x);
+  void count(const detail::ColumnView<Scalar>& x, std::uint32_t* bin_index = nullptr);
   void score_bins(Index n, const ScoringOptions& options);
 
   std::vector<Scalar> edges_;
@@ -436,7 +442,7 @@ void Histogram<Scalar>::place_equal_frequency_edges(const Scalar* sorted, Index 
 }
 
 template <class Scalar>
-void Histogram<Scalar>::count(const detail::ColumnView<Scalar>& x) {
+void Histogram<Scalar>::count(const detail::ColumnView<Scalar>& x, std::uint32_t* bin_index) {
   const Index n = x.size;
   const auto k = static_cast<std::size_t>(edges_.size() - 1);
   counts_.assign(k, 0);
@@ -446,7 +452,11 @@ void Histogram<Scalar>::count(const detail::ColumnView<Scalar>& x) {
     return;
   }
   if (!uniform_ || !(inv_width_ > Scalar(0))) {
-    for (Index i = 0; i < n; ++i) ++counts_[static_cast<std::size_t>(in_range_bin(x[i]))];
+    for (Index i = 0; i < n; ++i) {
+      const auto b = static_cast<std::size_t>(in_range_bin(x[i]));
+      ++counts_[b];
+      if (bin_index != nullptr) bin_index[i] = static_cast<std::uint32_t>(b);
+    }
     return;
   }
   // Every value lies in [lo, hi] here. Four interleaved sub-histograms: consecutive values in
@@ -458,13 +468,21 @@ void Histogram<Scalar>::count(const detail::ColumnView<Scalar>& x) {
   auto bin = [&](Scalar v) { return std::min(static_cast<std::size_t>((v - lo) * inv), last); };
   detail::with_access(x, [&](auto at) {
     const Index n4 = n - n % 4;
-    for (Index i = 0; i < n4; i += 4) {
-      ++sub[4 * bin(at(i))];
-      ++sub[4 * bin(at(i + 1)) + 1];
-      ++sub[4 * bin(at(i + 2)) + 2];
-      ++sub[4 * bin(at(i + 3)) + 3];
+    if (bin_index == nullptr) {
+      for (Index i = 0; i < n4; i += 4) {
+        ++sub[4 * bin(at(i))];
+        ++sub[4 * bin(at(i + 1)) + 1];
+        ++sub[4 * bin(at(i + 2)) + 2];
+        ++sub[4 * bin(at(i + 3)) + 3];
+      }
+      for (Index i = n4; i < n; ++i) ++sub[4 * bin(at(i))];
+    } else {
+      for (Index i = 0; i < n; ++i) {
+        const std::size_t b = bin(at(i));
+        ++sub[4 * b + static_cast<std::size_t>(i & 3)];
+        bin_index[i] = static_cast<std::uint32_t>(b);
+      }
     }
-    for (Index i = n4; i < n; ++i) ++sub[4 * bin(at(i))];
   });
   for (std::size_t b = 0; b < k; ++b)
     counts_[b] = static_cast<Index>(sub[4 * b]) + sub[4 * b + 1] + sub[4 * b + 2] + sub[4 * b + 3];
@@ -556,9 +574,9 @@ void Histogram<Scalar>::score_bins(Index n, const ScoringOptions& options) {
 }
 
 template <class Scalar>
-void Histogram<Scalar>::refit_view(const detail::ColumnView<Scalar>& x, const FeatureSpec& spec,
+bool Histogram<Scalar>::refit_view(const detail::ColumnView<Scalar>& x, const FeatureSpec& spec,
                                    const ScoringOptions& options, std::vector<Scalar>& scratch,
-                                   Index feature) {
+                                   Index feature, std::uint32_t* bin_index) {
   const Index n = x.size;
   detail::require(n > 0, "feature ", feature, ": cannot fit a histogram to no samples");
   periodic_ = spec.periodic;
@@ -571,9 +589,13 @@ void Histogram<Scalar>::refit_view(const detail::ColumnView<Scalar>& x, const Fe
     // Equal or fixed width: the caller's column is read in place (min/max, then counting).
     uniform_ = true;
     place_uniform_edges(x, spec, scratch, feature);
-    count(x);
+    // Freedman–Diaconis reorders `scratch` in place: when `x` lives there, the order of the
+    // counted values is no longer the caller's, so no indices are recorded.
+    const bool in_order =
+        x.data != scratch.data() || spec.binning.rule != BinCountRule::FreedmanDiaconis;
+    count(x, in_order ? bin_index : nullptr);
     score_bins(n, options);
-    return;
+    return in_order && bin_index != nullptr;
   }
 
   // Periodic features are binned as offsets into the period and equal-frequency bins need the
@@ -604,6 +626,7 @@ void Histogram<Scalar>::refit_view(const detail::ColumnView<Scalar>& x, const Fe
   }
   count(values);
   score_bins(n, options);
+  return false;
 }
 
 }  // namespace hbos

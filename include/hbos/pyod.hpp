@@ -8,9 +8,9 @@
 ///     feature), e_k = k * ((hi - lo) / B) + lo with the product rounded before the sum, e_B = hi.
 ///  2. Counts: N_k = #{e_k <= x < e_{k+1}}, the last bin closed.
 ///  3. Densities: h_k = (N_k / (e_{k+1} - e_k)) / n.
-///  4. Bin count B: the user's integer, or with `auto_bins` PyOD's Birgé–Rozenblac variant
-///     (argmax over b = 1..floor(sqrt n) - 1 of sum_k [N_k ln(b N_k / n + 1) - (b - 1 + (ln
-///     b)^2.5)], the penalty inside the sum), chosen per feature; it may be 1.
+///  4. Bin count B: the user's integer, or with `auto_bins` PyOD's Birgé–Rozenblac variant,
+///     chosen per feature (it may be 1): the first argmax over b = 1 .. floor(sqrt n) - 1 of
+///     L(b) = sum_k [N_k ln(b N_k / n + 1) - (b - 1 + ln(b)^2.5)], the penalty inside the sum.
 ///  5. Per value, with d = numpy.digitize(x, e, right=True) = #{k : e_k < x}:
 ///     1 <= d <= B uses log2(h_{d-1} + alpha), i.e. the bin (e_{d-1}, e_d];
 ///     below e_0 it uses bin 0 if e_0 - x <= (e_1 - e_0) tol, above e_B bin B-1 if
@@ -28,10 +28,11 @@
 ///    feature by 1000 divides its densities by 1000, so alpha then swamps them and the feature's
 ///    weight in the score changes; rankings and ROC-AUC change with the units.
 ///
-/// Parity (tests/unit/test_pyod.cpp, against PyOD's own outputs on six ODDS sets, four parameter
-/// sets): bin counts, edges, densities, counts and labels identical; scores and thresholds within
-/// 1e-9 relative. Do not compile with -ffast-math (it breaks numpy's rounding order).
-/// FMA contraction is guarded in the code (detail::mul_rounded), so -march=native is fine.
+/// Parity (tests/unit/test_pyod.cpp, against PyOD's own outputs on six ODDS sets under four
+/// parameter sets): bin counts, edges, densities, counts and labels identical; scores and
+/// thresholds bit-identical for integer n_bins, within 1.4e-15 relative for auto (PyOD's auto path
+/// takes numpy's vectorised log2). Do not compile with -ffast-math (it breaks numpy's rounding
+/// order). FMA contraction is guarded in the code (detail::mul_rounded), so -march=native is fine.
 
 #include <Eigen/Core>
 #include <algorithm>
@@ -276,8 +277,8 @@ class PyodHbos {
   /// (at least 64 per bin). cell() is monotone, so for a value x in cell c every interior edge in
   /// a cell below c is < x and every one in a cell above is > x: only an edge inside c itself
   /// needs a comparison, and each cell stores that edge with the log terms of both sides. Values
-  /// outside [e_0, e_B] (and cells with several edges, possible only past 1024 bins) take the
-  /// general path: digitize against the edges, then PyOD's branches.
+  /// outside [e_0, e_B], and cells holding several edges (past 65536 bins, or edges crowded by
+  /// rounding), take the general path: digitize against the edges, then PyOD's branches.
   struct Feature {
     Eigen::VectorXd edges;      // B + 1, strictly increasing
     Eigen::VectorXd densities;  // B

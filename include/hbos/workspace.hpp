@@ -18,6 +18,8 @@
 /// Threading: a Workspace is single-threaded state; use one per thread.
 
 #include <Eigen/Core>
+#include <algorithm>
+#include <cstdint>
 #include <memory>
 #include <utility>
 #include <variant>
@@ -62,6 +64,7 @@ class Workspace {
     grow_mask(n);
     scratch_.reserve(n);
     storage_.reserve(n);
+    bin_index_.reserve(n);
     threshold_scratch_.reserve(n);
     histograms_.resize(std::max(histograms_.size(), d));
     for (auto& h : histograms_) h.reserve(bins);
@@ -74,15 +77,38 @@ class Workspace {
   FrameSummary<Scalar> run(const Eigen::DenseBase<Derived>& x) {
     static_assert(std::is_same_v<typename Derived::Scalar, Scalar>,
                   "the data's scalar type must match the workspace's");
-    detail::fit_histograms(histograms_, x, params_, scratch_);
+    detail::require(x.rows() > 0, "cannot fit to an empty data set (0 rows)");
+    detail::require(x.cols() > 0, "cannot fit to data with no features (0 columns)");
+    detail::validate(params_, x.cols());
     rows_ = x.rows();
     cols_ = x.cols();
     const auto n = static_cast<std::size_t>(rows_);
     contributions_.resize(n * static_cast<std::size_t>(cols_));
     scores_.resize(n);
+    bin_index_.resize(n);
     grow_mask(n);
+    histograms_.resize(static_cast<std::size_t>(cols_));
 
-    detail::write_scores(histograms_, x, scores_.data(), contributions_.data(), storage_);
+    // Fit and score column by column. Where the histogram records the bin each value was
+    // counted in, the training values are scored straight from those indices (one table load
+    // each, no range checks); otherwise through the general lookup.
+    for (Index j = 0; j < cols_; ++j) {
+      Histogram<Scalar>& h = histograms_[static_cast<std::size_t>(j)];
+      const auto column = x.derived().col(j);
+      Scalar* c = contributions_.data() + static_cast<std::size_t>(j) * n;
+      if (h.refit(column, params_.spec(j), params_.scoring, scratch_, j, bin_index_.data())) {
+        const Scalar* table = h.bin_contributions().data();
+        for (std::size_t i = 0; i < n; ++i) c[i] = table[bin_index_[i]];
+      } else {
+        h.contributions_into(detail::view_of(column, storage_), c, false, j);
+      }
+      Scalar* s = scores_.data();
+      if (j == 0) {
+        std::copy(c, c + n, s);
+      } else {
+        for (std::size_t i = 0; i < n; ++i) s[i] += c[i];
+      }
+    }
     const Eigen::Map<const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>> scores(scores_.data(), rows_);
 
     FrameSummary<Scalar> summary;
@@ -120,7 +146,8 @@ class Workspace {
   ThresholdRule rule_;
   std::vector<Histogram<Scalar>> histograms_;
   std::vector<Scalar> scratch_, threshold_scratch_, scores_, contributions_;
-  std::vector<Scalar> storage_;  // columns of expressions without direct access
+  std::vector<Scalar> storage_;           // columns of expressions without direct access
+  std::vector<std::uint32_t> bin_index_;  // the bin each training value was counted in
   // Not std::vector<bool>: the mask must be addressable as bool[] for the Eigen map.
   std::unique_ptr<bool[]> inlier_;
   std::size_t inlier_capacity_ = 0;

@@ -77,8 +77,9 @@ inline void numpy_histogram_edges(const OuterEdges& range, Eigen::Index bins, do
 
 /// The bin numpy.histogram counts x in: e_c <= x < e_{c+1}, the last bin closed, for x in
 /// [e_0, e_B] and non-decreasing edges. `c` is a guess in [0, B-1], walked to the exact bin.
-/// (numpy computes floor((x - lo) * bins / (hi - lo)) and corrects it by one bin against the edges;
-/// both agree unless bins are narrower than a few ULPs of the values, which pyod.hpp rejects.)
+/// (numpy computes floor((x - lo) * bins / (hi - lo)) and corrects it by one bin against the
+/// edges; the two can differ only when bins are a few ULPs wide, where that estimate can be off by
+/// more than one bin. They agree on every vector PyOD produced.)
 [[nodiscard]] inline Eigen::Index count_bin(double x, const double* edges, Eigen::Index bins,
                                             Eigen::Index c) {
   while (c > 0 && x < edges[c]) --c;
