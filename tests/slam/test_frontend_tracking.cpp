@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 
 #include "eval/rpe.hpp"
+#include "frontend/ablation.hpp"
 #include "frontend/frame_source.hpp"
 #include "frontend/sequence_run.hpp"
 #include "frontend/slam_command.hpp"
@@ -11,6 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -117,4 +119,32 @@ TEST_CASE("hbos-slam writes its outputs on a short run", "[frontend][command]") 
   int lines = 0;
   for (std::string line; std::getline(stats, line);) ++lines;
   CHECK(lines == 6);  // header + 5 frames
+}
+
+TEST_CASE("the ablation runs every screen under every mask", "[frontend][ablation]") {
+  hbos::slam::Config config;
+  config.dataset.path = slam_data("fr1_xyz_37").string();
+  config.dataset.max_frames = 4;  // the per-frame RPE needs 4 poses (it drops the last pair)
+  config.scenario.person_dir = slam_data("person").string();
+  config.mask.detector_dir = slam_data("models/yolo-fastest-1.1_body").string();
+  const auto sequence = hbos::slam::load_tum_sequence(config.dataset.path);
+  const auto rows =
+      hbos::slam::run_ablation(config, sequence, hbos::slam::camera_preset("tum1"), nullptr);
+  // static: none, detector; person: none, exact, degraded, detector; 7 screens each.
+  REQUIRE(rows.size() == 6 * 7);
+  CHECK(rows.front().scenario == "static");
+  CHECK(rows.back().scenario == "person");
+  CHECK(rows.back().mask == "detector");
+  CHECK(rows.back().screen == "none");
+  for (const auto& r : rows) {
+    CHECK(r.totals.frames == 4);
+    CHECK(r.ate_rmse_m < 0.05);
+    // Nothing composited in the static scenario, so nothing can be labelled dynamic there.
+    if (r.scenario == "static") CHECK(r.totals.person_matches == 0);
+    if (r.screen == "none") CHECK(r.totals.static_dropped == 0);
+  }
+  const std::string md = hbos::slam::ablation_markdown(rows, config, "tum1", 4);
+  CHECK(std::count(md.begin(), md.end(), '\n') == 2 + 2 + 42);  // settings, blank, header, rule
+  const std::string csv = hbos::slam::ablation_csv(rows);
+  CHECK(std::count(csv.begin(), csv.end(), '\n') == 1 + 42);
 }

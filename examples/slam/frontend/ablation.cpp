@@ -76,7 +76,7 @@ std::string ablation_markdown(const std::vector<AblationRow>& rows, const Config
       base.scenario.speed_px_per_frame);
   md +=
       "| scenario | mask | screen | ATE RMSE [cm] | RPE trans [mm/frame] | person matches kept [%] "
-      "| static matches lost [%] | screen [µs/frame] | mask [ms/frame] |\n"
+      "| static matches lost [%] | screen [µs/frame, median] | mask [ms/frame, median] |\n"
       "|---|---|---|---:|---:|---:|---:|---:|---:|\n";
   for (const AblationRow& r : rows) {
     const std::string kept =
@@ -87,7 +87,7 @@ std::string ablation_markdown(const std::vector<AblationRow>& rows, const Config
     md += fmt::format("| {} | {} | {} | {:.2f} | {:.2f} | {} | {:.1f} | {:.0f} | {:.1f} |\n",
                       r.scenario, r.mask, r.screen, r.ate_rmse_m * 100.0,
                       r.rpe_trans_rmse_m * 1000.0, kept, 100.0 * r.totals.static_loss_share,
-                      r.totals.mean_screen_us, r.totals.mean_mask_us / 1000.0);
+                      r.totals.median_screen_us, r.totals.median_mask_us / 1000.0);
   }
   return md;
 }
@@ -95,14 +95,16 @@ std::string ablation_markdown(const std::vector<AblationRow>& rows, const Config
 std::string ablation_csv(const std::vector<AblationRow>& rows) {
   std::string csv =
       "scenario,mask,screen,ate_rmse_m,rpe_trans_rmse_m_per_frame,matches,person_matches,"
-      "person_survivors,static_matches,static_dropped,mean_screen_us,mean_refine_us,mean_mask_us,"
+      "person_survivors,static_matches,static_dropped,mean_screen_us,median_screen_us,"
+      "mean_refine_us,mean_mask_us,median_mask_us,"
       "frames_tracked\n";
   for (const AblationRow& r : rows) {
     const RunTotals& t = r.totals;
-    csv += fmt::format("{},{},{},{:.9g},{:.9g},{},{},{},{},{},{:.3f},{:.3f},{:.3f},{}\n",
-                       r.scenario, r.mask, r.screen, r.ate_rmse_m, r.rpe_trans_rmse_m, t.matches,
-                       t.person_matches, t.person_survivors, t.static_matches, t.static_dropped,
-                       t.mean_screen_us, t.mean_refine_us, t.mean_mask_us, t.frames_tracked);
+    csv += fmt::format(
+        "{},{},{},{:.9g},{:.9g},{},{},{},{},{},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{}\n", r.scenario,
+        r.mask, r.screen, r.ate_rmse_m, r.rpe_trans_rmse_m, t.matches, t.person_matches,
+        t.person_survivors, t.static_matches, t.static_dropped, t.mean_screen_us,
+        t.median_screen_us, t.mean_refine_us, t.mean_mask_us, t.median_mask_us, t.frames_tracked);
   }
   return csv;
 }

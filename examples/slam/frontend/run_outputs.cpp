@@ -79,6 +79,8 @@ nlohmann::json summary_json(const RunResult& run, const Config& config,
   j["mean_screen_us"] = t.mean_screen_us;
   j["mean_refine_us"] = t.mean_refine_us;
   j["mean_mask_us"] = t.mean_mask_us;
+  j["median_screen_us"] = t.median_screen_us;
+  j["median_mask_us"] = t.median_mask_us;
   if (run.evaluation) {
     const Evaluation& e = *run.evaluation;
     j["ate_m"] = statistics_json(e.ate.stats, 1.0);

@@ -2,17 +2,32 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <ostream>
 
 namespace hbos::slam {
 
+namespace {
+
+double median_of(std::vector<double> values) {
+  if (values.empty()) return 0.0;
+  const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
+  std::nth_element(values.begin(), middle, values.end());
+  if (values.size() % 2 == 1) return *middle;
+  return 0.5 * (*middle + *std::max_element(values.begin(), middle));
+}
+
+}  // namespace
+
 RunTotals total_of(const std::vector<FrameStats>& stats) {
   RunTotals t;
+  std::vector<double> screen_times, mask_times;
   double screen_us = 0.0, refine_us = 0.0;
   int screened = 0;
   for (const FrameStats& s : stats) {
     ++t.frames;
     t.mean_mask_us += s.mask_us;
+    mask_times.push_back(s.mask_us);
     t.frames_tracked += s.tracked ? 1 : 0;
     t.frames_rough_ransac += s.rough_from_ransac ? 1 : 0;
     t.matches += s.matches;
@@ -23,6 +38,7 @@ RunTotals total_of(const std::vector<FrameStats>& stats) {
     if (s.matches > 0) {
       ++screened;
       screen_us += s.screen_us;
+      screen_times.push_back(s.screen_us);
       refine_us += s.refine_us;
     }
   }
@@ -35,6 +51,8 @@ RunTotals total_of(const std::vector<FrameStats>& stats) {
         static_cast<double>(t.static_dropped) / static_cast<double>(t.static_matches);
   }
   if (t.frames > 0) t.mean_mask_us /= t.frames;
+  t.median_screen_us = median_of(screen_times);
+  t.median_mask_us = median_of(mask_times);
   if (screened > 0) {
     t.mean_screen_us = screen_us / screened;
     t.mean_refine_us = refine_us / screened;
@@ -80,7 +98,9 @@ RunResult run_tracker(const std::function<Frame(int)>& frame_at, int n, const Co
 Evaluation evaluate_trajectory(const Trajectory& groundtruth, const Trajectory& estimate,
                                const std::vector<double>& frame_stamps) {
   EvaluationParams params;
-  params.rpe = true;
+  // evaluate_rpe.py pairs pose i with i + 1 and drops the pair ending at the last pose: 2 pairs,
+  // its minimum, need 4 poses.
+  params.rpe = estimate.size() >= 4;
   params.rpe_delta = 1.0;
   params.rpe_unit = RpeDeltaUnit::kFrames;  // drift per frame: comparable across sequence lengths
   params.frame_stamps = frame_stamps;

@@ -36,6 +36,9 @@ struct RunTotals {
   double mean_screen_us = 0.0;     ///< [us] per frame with a screen (frames after the first)
   double mean_refine_us = 0.0;     ///< [us] per frame
   double mean_mask_us = 0.0;  ///< [us] per frame (all frames): the mask stage, detector included
+  /// Medians of the same: on a shared machine a few preempted frames dominate the means.
+  double median_screen_us = 0.0;
+  double median_mask_us = 0.0;
 };
 
 [[nodiscard]] RunTotals total_of(const std::vector<FrameStats>& stats);
@@ -62,8 +65,9 @@ struct RunResult {
                                     const Config& config, const CameraModel& camera,
                                     std::ostream* progress);
 
-/// The ATE (SE(3)-aligned, as evaluate_ate.py) and the per-frame RPE (delta 1 frame) of the
-/// estimate against `groundtruth`; `frame_stamps` count the frames for the share tracked.
+/// The ATE (SE(3)-aligned, as evaluate_ate.py) and, from 4 poses on, the per-frame RPE (delta
+/// 1 frame) of the estimate against `groundtruth`; `frame_stamps` count the frames for the share
+/// tracked.
 /// Throws hbos::InvalidArgument when the two do not overlap.
 [[nodiscard]] Evaluation evaluate_trajectory(const Trajectory& groundtruth,
                                              const Trajectory& estimate,

@@ -114,7 +114,13 @@ int run_single(const CommandOptions& o, const CameraModel& camera, const RgbdSeq
                               o.quiet ? nullptr : &err);
   const Trajectory* groundtruth = sequence.groundtruth ? &*sequence.groundtruth : nullptr;
   if (groundtruth != nullptr) {
-    run.evaluation = evaluate_trajectory(*groundtruth, estimate_of(run, "hbos-slam"), run.stamps);
+    try {
+      run.evaluation = evaluate_trajectory(*groundtruth, estimate_of(run, "hbos-slam"), run.stamps);
+    } catch (const InvalidArgument& e) {
+      // E.g. too few frames for the RPE: the run's own outputs are still worth writing.
+      err << "hbos-slam: warning: not evaluated: " << e.what() << "\n";
+      groundtruth = nullptr;
+    }
   }
 
   const RunTotals& t = run.totals;
@@ -133,16 +139,16 @@ int run_single(const CommandOptions& o, const CameraModel& camera, const RgbdSeq
     }
     out << "\n";
   } else {
-    out << "  no groundtruth.txt: ATE/RPE not computed\n";
+    out << "  ATE/RPE not computed (no groundtruth.txt, or see the warning)\n";
   }
   out << fmt::format(
       "  matches {:.0f}/frame; person matches kept {} ({} of {}); static matches lost {:.1f} %; "
-      "screen {:.0f} us/frame, refinement {:.0f} us/frame, mask {:.1f} ms/frame; {} of {} frames "
-      "tracked\n",
+      "screen {:.0f} us/frame (median {:.0f}), refinement {:.0f} us/frame, mask {:.1f} ms/frame; "
+      "{} of {} frames tracked\n",
       t.frames > 1 ? static_cast<double>(t.matches) / (t.frames - 1) : 0.0,
       percent_or_na(t.person_survival_share), t.person_survivors, t.person_matches,
-      100.0 * t.static_loss_share, t.mean_screen_us, t.mean_refine_us, t.mean_mask_us / 1000.0,
-      t.frames_tracked, t.frames);
+      100.0 * t.static_loss_share, t.mean_screen_us, t.median_screen_us, t.mean_refine_us,
+      t.mean_mask_us / 1000.0, t.frames_tracked, t.frames);
   try {
     for (const std::string& path :
          write_run_outputs(config.output.dir, run, config, camera.name, groundtruth)) {
