@@ -150,7 +150,12 @@ ScreenOutcome ResidualScreen::screen(const std::vector<Eigen::Vector3d>& points_
   const hbos::ScreenStrategy& strategy = impl_->screen->config().strategy;
   out.threshold = result.threshold();
   out.magnitude_cut = magnitude_cut(strategy, out.threshold);
-  out.statistic = result.n_features() > 1 ? "magnitude+angle" : result.feature_name(0);
+  out.statistic =
+      result.n_features() > 1 ? "magnitude (angle also scored)" : result.feature_name(0);
+  // chi^2 scores |r|^2 / sigma^2; the magnitude shown is its square root.
+  if (std::holds_alternative<hbos::ChiSquareGate>(strategy)) {
+    out.statistic = "residual_whitened (chi2 gate on its square)";
+  }
   out.unit = whitened(strategy) ? "px/sigma" : "px";
   out.rounds = result.rounds();
   out.refine_us = refine_us;
