@@ -2,6 +2,7 @@
 // bad input.
 
 #include <hbos/model.hpp>
+#include <hbos/threshold.hpp>
 
 #include <algorithm>
 #include <catch2/catch.hpp>
@@ -241,4 +242,29 @@ TEST_CASE("per-feature specs: a periodic angle next to a one-sided magnitude", "
   const Eigen::MatrixXd c = model.contributions(probe);
   CHECK(c(0, 0) == 0.0);
   CHECK(c(1, 0) == model.histogram(0).cap());
+}
+
+TEST_CASE("PyOD's edge-defect example scores the rare value highest", "[model][pyod]") {
+  // docs/pyod_compat.md: 200 samples of 0..5 with counts 40, 1, 60, 50, 30, 19 and 5 plain bins
+  // (edges 0..5, counts 40, 1, 60, 50, 49). PyOD scores the lone 1 with bin 0 and the commonest
+  // value 2 with bin 1, so 2 scores highest and nothing is flagged. Here each value is scored from
+  // the bin it was counted in: 1 scores log(60 / 1), 2 scores 0, and only the 1 is flagged.
+  const int counts[] = {40, 1, 60, 50, 30, 19};
+  Eigen::MatrixXd x(200, 1);
+  Eigen::Index row = 0;
+  for (int v = 0; v < 6; ++v)
+    for (int c = 0; c < counts[v]; ++c) x(row++, 0) = v;
+  hbos::HbosParams params;
+  params.feature.binning.bins = 5;
+  params.feature.binning.shifts = 1;
+  const auto model = hbos::Hbosd::fit(x, params);
+  CHECK(model.histogram(0).counts() == std::vector<Eigen::Index>{40, 1, 60, 50, 49});
+  Eigen::MatrixXd probe(2, 1);
+  probe << 1.0, 2.0;
+  const Eigen::VectorXd s = model.score(probe);
+  CHECK(s(0) == Approx(std::log(60.0)));
+  CHECK(s(1) == 0.0);
+  const Eigen::VectorXd scores = model.score(x);
+  CHECK(scores.maxCoeff() == Approx(std::log(60.0)));
+  CHECK(hbos::threshold_scores(scores, hbos::Contamination{0.1}).n_outliers() == 1);
 }

@@ -74,7 +74,7 @@ enum class RoughPoseMethod {
 
 struct RoughPoseConfig {
   RoughPoseMethod method = RoughPoseMethod::kRansac;
-  /// [px] inlier threshold of the consensus: tight (about 2 sigma of level-0 keypoint noise) so
+  /// [px] inlier threshold of the consensus: tight (near the 0.6 px level-0 keypoint noise) so
   /// that a moving person cannot join it (FINDINGS.md point 4; measured in docs/slam_demo.md)
   double ransac_threshold_px = 1.0;
   int ransac_iterations = 300;

@@ -69,8 +69,11 @@ PersonCompositor::PersonCompositor(PersonCutout cutout, ScenarioConfig config)
     throw InvalidArgument(
         fmt::format("person depth must be finite and > 0 m, got {}", config_.depth_m));
   }
-  if (!std::isfinite(config_.start_x_px) || !std::isfinite(config_.speed_px_per_frame)) {
-    throw InvalidArgument("person start and speed must be finite");
+  // Bounded so that pixel positions stay far from integer overflow on any sequence length.
+  if (!(std::abs(config_.start_x_px) <= 1e5) || !(std::abs(config_.speed_px_per_frame) <= 1e3)) {
+    throw InvalidArgument(fmt::format(
+        "person start {} px must lie in [-1e5, 1e5] and speed {} px/frame in [-1e3, 1e3]",
+        config_.start_x_px, config_.speed_px_per_frame));
   }
 }
 
