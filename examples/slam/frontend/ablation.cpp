@@ -17,12 +17,12 @@ std::vector<MaskSource> ablation_masks(bool add_person) {
 }
 
 std::vector<AblationRow> run_ablation(const Config& base, const RgbdSequence& sequence,
-                                      const CameraModel& camera, std::ostream* progress) {
+                                      const CameraModel& camera, std::ostream* progress,
+                                      const std::vector<std::string>& screens) {
   if (!sequence.groundtruth) {
     throw InvalidArgument("the ablation needs ground truth: '" + sequence.root +
                           "' has no groundtruth.txt");
   }
-  const std::vector<std::string>& screens = screen_strategy_names();
   int total_runs = 0;
   for (const bool person : {false, true}) {
     total_runs += static_cast<int>(ablation_masks(person).size() * screens.size());

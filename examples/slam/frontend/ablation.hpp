@@ -7,6 +7,7 @@
 #include "frontend/camera.hpp"
 #include "frontend/config.hpp"
 #include "frontend/dataset.hpp"
+#include "frontend/residual_screen.hpp"
 #include "frontend/sequence_run.hpp"
 
 #include <iosfwd>
@@ -28,12 +29,12 @@ struct AblationRow {
 /// masks that do not depend on it (none, detector) are run there.
 [[nodiscard]] std::vector<MaskSource> ablation_masks(bool add_person);
 
-/// Runs the grid on `sequence` (which needs ground truth). `base` supplies every other setting.
-/// With `progress`, one line per run.
-[[nodiscard]] std::vector<AblationRow> run_ablation(const Config& base,
-                                                    const RgbdSequence& sequence,
-                                                    const CameraModel& camera,
-                                                    std::ostream* progress);
+/// Runs the grid on `sequence` (which needs ground truth): `screens` (by default every strategy,
+/// screen_strategy_names()) under every mask of ablation_masks(). `base` supplies every other
+/// setting. With `progress`, one line per run.
+[[nodiscard]] std::vector<AblationRow> run_ablation(
+    const Config& base, const RgbdSequence& sequence, const CameraModel& camera,
+    std::ostream* progress, const std::vector<std::string>& screens = screen_strategy_names());
 
 /// The rows as a Markdown table (ATE RMSE cm, RPE trans mm/frame, person matches kept %, static
 /// matches lost %, screen us/frame), preceded by a line on the settings.
