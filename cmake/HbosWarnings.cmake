@@ -13,6 +13,11 @@ function(hbos_set_warnings target)
     endif()
   endif()
   if(HBOS_SANITIZE)
+    # GCC's -Wmaybe-uninitialized gives false positives under the sanitizers' instrumentation
+    # (seen in Catch2's own code), so it is not an error in sanitizer builds.
+    if(CMAKE_CXX_COMPILER_ID STREQUAL "GNU")
+      target_compile_options(${target} PRIVATE -Wno-maybe-uninitialized)
+    endif()
     target_compile_options(${target} PRIVATE -fsanitize=address,undefined -fno-omit-frame-pointer
                                              -fno-sanitize-recover=all)
     target_link_options(${target} PRIVATE -fsanitize=address,undefined)
