@@ -1,6 +1,7 @@
 #pragma once
-// Counts heap allocations made by the current thread while a scope is active. The global
-// operator new that feeds it is defined once per test executable, in tests/unit/alloc_counter.cpp.
+// Counts heap allocations (operator new and malloc alike) made by the current thread while a
+// scope is active. The hooks that feed it live once per test executable, in
+// tests/unit/alloc_counter.cpp.
 //
 //     hbos_test::AllocationCounter counter;   // starts counting
 //     work();
@@ -29,5 +30,9 @@ class AllocationCounter {
  private:
   std::size_t start_;
 };
+
+/// Makes `p` observable, so the optimiser cannot elide the allocation that produced it (C++14
+/// lets compilers drop a new/delete or malloc/free pair whose memory never escapes).
+inline void escape(const void* p) { asm volatile("" : : "g"(p) : "memory"); }
 
 }  // namespace hbos_test
