@@ -18,13 +18,14 @@
 /// Scott and Freedman–Diaconis fall back to Sturges when their width is zero (constant or
 /// heavily tied data). Birgé–Rozenblac counts its penalty once per candidate b, as published
 /// (PyOD subtracts it b times: that variant lives in pyod.hpp). Its search stops at floor(sqrt(n))
-/// so that, with one sort and a binary search per edge, it costs O(n log n) in total.
+/// and costs O(n) in total (detail::EdgeCounter).
 
 #include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <utility>
 #include <vector>
 
 #include "hbos/error.hpp"
@@ -134,81 +135,184 @@ inline void validate(const FeatureSpec& spec, Eigen::Index feature) {
   return clamp_bins(std::ceil(range / h), max_bins);
 }
 
+/// Exact counts of `u b < k` (u = (v - lo) * (1 / (hi - lo)) in double, as the direct count
+/// computes it) for any candidate b and edge k, without a pass over the data per query.
+///
+/// The u are bucketed once into M ~ n/4 cells by a counting sort (O(n)). For an edge at u = k/b,
+/// its position in cell units is p = k M / b. Unless p lies within 1e-4 of a cell boundary,
+/// every value in a cell below p's cell has u b < k by a margin of at least b 1e-4 / M
+/// (>= 3.8e-10 for M <= 2^18) and every value in a cell above it fails by as much, while the
+/// rounding of u M, p and u b is below 1.2e-10 in cell units: only the ~4 values of p's own cell
+/// are compared, with the very comparison `u b < k` of the direct count. Near a boundary (rare:
+/// 2e-4 of the edges) the neighbouring cells are compared too. tests/unit/test_binning.cpp checks
+/// every (b, k) against a direct count, on data placed exactly on and next to the edges.
+class EdgeCounter {
+ public:
+  /// Buckets `n` values x[i * stride] of range [lo, hi] (hi > lo) into values[0, n); `values`
+  /// (grown to at least 2n) and `index` are reusable buffers (no allocation once grown).
+  template <class Scalar>
+  EdgeCounter(const Scalar* x, Eigen::Index n, Eigen::Index stride, Scalar lo, Scalar hi,
+              std::vector<double>& values, std::vector<std::uint32_t>& index)
+      : cells_(static_cast<std::size_t>(std::clamp<Eigen::Index>(n / 4, 64, 1 << 18))),
+        dcells_(static_cast<double>(cells_)),
+        index_(index) {
+    const double inv_range = 1.0 / (static_cast<double>(hi) - static_cast<double>(lo));
+    const auto u_of = [&](Eigen::Index i) {
+      return (static_cast<double>(x[i * stride]) - static_cast<double>(lo)) * inv_range;
+    };
+    // Counting sort by cell, in two scatters: first into coarse groups of 256 cells (through
+    // the second half of `values`), then each group, now small enough for L1, into its cells.
+    // Scattered straight into ~n/4 cells, nearly every write would miss the cache (the write
+    // cursors span the whole array). u is recomputed in the second pass rather than stored: two
+    // flops are cheaper than another n doubles of memory traffic.
+    const auto un = static_cast<std::size_t>(n);
+    if (values.size() < 2 * un) values.resize(2 * un);
+    constexpr std::size_t group_shift = 8;
+    const std::size_t groups = ((cells_ - 1) >> group_shift) + 1;
+    index_.resize(cells_ + 1 + groups);
+    std::uint32_t* cell_start = index_.data();
+    std::uint32_t* group_cursor = cell_start + cells_ + 1;
+    std::fill(cell_start, cell_start + cells_ + 1, 0U);
+    for (Eigen::Index i = 0; i < n; ++i) ++cell_start[cell_of(u_of(i)) + 1];
+    for (std::size_t c = 0; c < cells_; ++c) cell_start[c + 1] += cell_start[c];
+    // cell_start[c] is where cell c begins, in both halves: group g starts at cell_start[g * 256].
+    double* grouped = values.data() + un;
+    for (std::size_t g = 0; g < groups; ++g) group_cursor[g] = cell_start[g << group_shift];
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const double u = u_of(i);
+      grouped[group_cursor[cell_of(u) >> group_shift]++] = u;
+    }
+    // cell_start[c] serves as cell c's cursor; afterwards it holds the start of cell c + 1.
+    for (std::size_t i = 0; i < un; ++i) values[cell_start[cell_of(grouped[i])]++] = grouped[i];
+    for (std::size_t c = cells_; c > 0; --c) cell_start[c] = cell_start[c - 1];
+    cell_start[0] = 0;
+    by_cell_ = values.data();
+  }
+
+  /// Number of values with u b < k, for 0 < k < b.
+  [[nodiscard]] std::uint32_t below(double b, double k) const {
+    const double p = position(b, k);
+    const double cell = std::floor(p);
+    const double frac = p - cell;
+    const auto m = std::min(cells_ - 1, static_cast<std::size_t>(static_cast<std::int64_t>(cell)));
+    const bool near_boundary = frac < 1e-4 || frac > 1.0 - 1e-4;
+    const std::size_t first_cell = near_boundary && m > 0 ? m - 1 : m;
+    const std::size_t end_cell = std::min(cells_, near_boundary ? m + 2 : m + 1);
+    const std::uint32_t first = index_[first_cell];
+    const std::uint32_t last = index_[end_cell];
+    std::uint32_t count = first;
+    for (std::uint32_t i = first; i < last; ++i) count += by_cell_[i] * b < k ? 1U : 0U;
+    return count;
+  }
+
+  /// Calls visit(b, k, below(b, k)) for every b = 2..b_max and k = 1..b-1: for each b in
+  /// increasing k, but overall in increasing order of the edge's cell. Asked for b by b, the
+  /// ~b_max^2 / 2 edges jump across the whole array and nearly every one is a cache miss (most of
+  /// the search time for n = 1e6); in cell order the values are read in one sequential sweep.
+  /// The order is kept by a bucket queue: each b waits in the bucket of its next edge's cell.
+  template <class Visit>
+  void for_each_edge(Eigen::Index b_max, Visit&& visit) {
+    constexpr std::uint32_t none = std::numeric_limits<std::uint32_t>::max();
+    const auto nb = static_cast<std::size_t>(std::max<Eigen::Index>(b_max, 1)) + 1;
+    // index_ = [cell_start (M + 1) | head of each cell's bucket (M) | per b: next b in its
+    // bucket, its next k (2 (b_max + 1))].
+    index_.resize(2 * cells_ + 1 + 2 * nb);
+    std::uint32_t* head = index_.data() + cells_ + 1;
+    std::uint32_t* link = head + cells_;
+    std::uint32_t* next_k = link + nb;
+    std::fill(head, head + cells_, none);
+    auto enqueue = [&](std::uint32_t b, std::uint32_t k) {
+      const auto m = std::min(
+          cells_ - 1,
+          static_cast<std::size_t>(static_cast<std::int64_t>(position(static_cast<double>(b), k))));
+      next_k[b] = k;
+      link[b] = head[m];
+      head[m] = b;
+    };
+    for (std::size_t b = 2; b < nb; ++b) enqueue(static_cast<std::uint32_t>(b), 1);
+    for (std::size_t m = 0; m < cells_; ++m) {
+      // A b whose next edge falls in the same cell re-enters this bucket and is taken again.
+      while (head[m] != none) {
+        const std::uint32_t b = head[m];
+        head[m] = link[b];
+        const std::uint32_t k = next_k[b];
+        visit(b, k, below(static_cast<double>(b), static_cast<double>(k)));
+        if (k + 1 < b) enqueue(b, k + 1);
+      }
+    }
+  }
+
+ private:
+  /// Where edge k/b lies, in cell units.
+  [[nodiscard]] double position(double b, double k) const { return k * dcells_ / b; }
+  /// Cells by truncation; through int64 because double -> uint64 has no single SSE2
+  /// instruction (u * M lies in [0, M] here).
+  [[nodiscard]] std::size_t cell_of(double u) const {
+    return std::min(cells_ - 1, static_cast<std::size_t>(static_cast<std::int64_t>(u * dcells_)));
+  }
+
+  std::size_t cells_;
+  double dcells_;
+  // [cell_start (M + 1) | scratch]: the sort's group cursors, then for_each_edge's queue.
+  std::vector<std::uint32_t>& index_;
+  const double* by_cell_ = nullptr;
+};
+
 /// Birgé–Rozenblac's penalised log-likelihood maximiser over b = 1..floor(sqrt(n)).
 ///
 /// Candidate b puts value v in bin floor(u b) with u = (v - lo) * (1 / (hi - lo)) (the last bin
-/// closed). Counting every candidate directly costs O(n sqrt(n)) = 1e9 steps for n = 1e6.
-/// Instead the u are bucketed once into M ~ n/16 cells by a counting sort (O(n)). For an interior
-/// edge k/b, every cell more than one below the edge's cell lies wholly below it (u b < k - b/M)
-/// and every cell more than one above lies wholly above: margins far larger than any rounding.
-/// Only the ~48 values of the three cells around the edge are compared, with the very
-/// comparison `u b < k` of the direct count, so the counts are exactly the direct method's
-/// (tests/unit/test_binning.cpp checks against a brute-force count). Total O(n + b_max^2 n / M)
-/// = O(n) for M ~ n / 16 and b_max = sqrt(n).
+/// closed). Counting every candidate directly costs O(n sqrt(n)) = 1e9 steps for n = 1e6; with
+/// an EdgeCounter each of the ~n/2 interior edges of all candidates costs ~4 comparisons, so the
+/// search is O(n) in total (plus one log per bin).
 ///
-/// `work` and `cell_start` are reusable buffers (no allocation once grown).
+/// `values` and `index` are reusable buffers (no allocation once grown).
 template <class Scalar>
 [[nodiscard]] Eigen::Index birge_rozenblac_bins(const Scalar* x, Eigen::Index n,
                                                 Eigen::Index stride, Scalar lo, Scalar hi,
-                                                Eigen::Index max_bins, std::vector<double>& work,
-                                                std::vector<std::uint32_t>& cell_start) {
+                                                Eigen::Index max_bins, std::vector<double>& values,
+                                                std::vector<std::uint32_t>& index) {
   if (!(hi > lo) || n < 4) return 1;
-  const double inv_range = 1.0 / (static_cast<double>(hi) - static_cast<double>(lo));
-  const auto un = static_cast<std::size_t>(n);
-  const auto cells = static_cast<std::size_t>(std::clamp<Eigen::Index>(n / 16, 64, 1 << 16));
-  const double dcells = static_cast<double>(cells);
-  auto cell_of = [&](double u) {
-    return std::min(cells - 1, static_cast<std::size_t>(u * dcells));
-  };
-
-  // u for every value, then a counting sort by cell into the second half of `work`.
-  work.resize(2 * un);
-  double* u = work.data();
-  double* by_cell = work.data() + un;
-  cell_start.assign(cells + 1, 0);
-  for (std::size_t i = 0; i < un; ++i) {
-    u[i] =
-        (static_cast<double>(x[static_cast<Eigen::Index>(i) * stride]) - static_cast<double>(lo)) *
-        inv_range;
-    ++cell_start[cell_of(u[i]) + 1];
-  }
-  for (std::size_t c = 0; c < cells; ++c) cell_start[c + 1] += cell_start[c];
-  // cell_start[c] serves as cell c's cursor; afterwards it holds the start of cell c + 1.
-  for (std::size_t i = 0; i < un; ++i) by_cell[cell_start[cell_of(u[i])]++] = u[i];
-  for (std::size_t c = cells; c > 0; --c) cell_start[c] = cell_start[c - 1];
-  cell_start[0] = 0;
-
-  // Number of values with u * b < k, k = 1..b-1.
-  // The edge's cell needs no exactness (the neighbours are compared too): cells_per_unit = M/b.
-  auto below = [&](double db, double cells_per_unit, double k) {
-    const auto m = std::min(cells - 1, static_cast<std::size_t>(k * cells_per_unit));
-    const std::uint32_t first = cell_start[m > 0 ? m - 1 : 0];
-    const std::uint32_t last = cell_start[std::min(cells, m + 2)];
-    std::uint32_t count = first;
-    for (std::uint32_t i = first; i < last; ++i) count += by_cell[i] * db < k ? 1U : 0U;
-    return static_cast<double>(count);
-  };
-
   const auto b_max = std::min<Eigen::Index>(
       max_bins,
       std::max<Eigen::Index>(1, static_cast<Eigen::Index>(std::sqrt(static_cast<double>(n)))));
+  // Per b: the running sum of N_k ln N_k over its bins so far and the cumulative count at its
+  // last edge; then a table of N ln N. They live in `values` after the n bucketed values (where
+  // the sort kept its intermediate copy).
+  const auto nb = static_cast<std::size_t>(b_max) + 1;
+  const auto un = static_cast<std::size_t>(n);
+  values.resize(std::max(values.size(), un + std::max(un, 2 * nb + 4096)));
+  EdgeCounter counter(x, n, stride, lo, hi, values, index);
+  double* sum_n_log_n = values.data() + un;
+  double* cumulative = sum_n_log_n + nb;
+  std::fill(sum_n_log_n, sum_n_log_n + 2 * nb, 0.0);
+  // N ln N for the small counts most bins of the large candidates hold (n / b ~ sqrt(n)),
+  // tabulated once: the ~n/2 bins of all candidates would otherwise cost a log each. Same values
+  // as computing them in place (std::log of the same double), so the choice of b is unchanged.
+  const std::size_t table_size = std::min<std::size_t>(un + 1, 4096);
+  double* n_log_n = cumulative + nb;
+  for (std::size_t c = 0; c < table_size; ++c) {
+    const double dc = static_cast<double>(c);
+    n_log_n[c] = c > 1 ? dc * std::log(dc) : 0.0;
+  }
+  auto add_bin = [&](std::size_t b, double at_edge) {
+    const double count = at_edge - cumulative[b];
+    const auto c = static_cast<std::size_t>(static_cast<std::int64_t>(count));
+    sum_n_log_n[b] += c < table_size ? n_log_n[c] : count * std::log(count);
+    cumulative[b] = at_edge;
+  };
+  counter.for_each_edge(b_max, [&](std::uint32_t b, std::uint32_t, std::uint32_t below) {
+    add_bin(b, static_cast<double>(below));
+  });
   const double dn = static_cast<double>(n);
   Eigen::Index best_b = 1;
   double best_l = -std::numeric_limits<double>::infinity();
   for (Eigen::Index b = 1; b <= b_max; ++b) {
-    const double db = static_cast<double>(b);
-    const double cells_per_unit = dcells / db;
+    const auto ub = static_cast<std::size_t>(b);
+    add_bin(ub, dn);  // the last bin, closed at hi
     // sum_k N_k ln(b N_k / n) = sum_k N_k ln N_k + n ln(b / n).
-    double sum_n_log_n = 0.0;
-    double previous = 0.0;
-    for (Eigen::Index k = 1; k <= b; ++k) {
-      const double cumulative = k < b ? below(db, cells_per_unit, static_cast<double>(k)) : dn;
-      const double count = cumulative - previous;
-      if (count > 1.0) sum_n_log_n += count * std::log(count);
-      previous = cumulative;
-    }
+    const double db = static_cast<double>(b);
     const double penalty = db - 1.0 + std::pow(std::log(db), 2.5);
-    const double l = sum_n_log_n + dn * std::log(db / dn) - penalty;
+    const double l = sum_n_log_n[ub] + dn * std::log(db / dn) - penalty;
     if (l > best_l) {  // strict: the smallest b wins ties
       best_l = l;
       best_b = b;

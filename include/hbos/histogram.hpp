@@ -38,6 +38,7 @@
 
 #include <Eigen/Core>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -219,20 +220,24 @@ class Histogram {
   ///
   /// With `bin_index` (room for column.size() entries), the bin each training value was counted
   /// in is recorded there when the binning allows it cheaply (equal or fixed width, not
-  /// periodic); the return value says whether it was. Scoring the training values from those
-  /// indices then needs no lookup at all (the Workspace does this).
+  /// periodic, every bin index representable as a BinIndex); the return value says whether it
+  /// was. Scoring the training values from those indices then needs no lookup at all
+  /// (Hbos::fit_and_score and the Workspace do this).
   /// \throws InvalidArgument if the column is empty or holds a non-finite value.
-  template <class Column>
+  template <class Column, class BinIndex = std::uint32_t>
   bool refit(const Column& column, const FeatureSpec& spec, const ScoringOptions& options,
-             std::vector<Scalar>& scratch, Index feature = 0, std::uint32_t* bin_index = nullptr) {
+             std::vector<Scalar>& scratch, Index feature = 0, BinIndex* bin_index = nullptr) {
+    static_assert(std::is_integral_v<BinIndex> && std::is_unsigned_v<BinIndex>,
+                  "bin indices are unsigned integers");
     const detail::ColumnView<Scalar> view = detail::view_of(column, scratch);
     return refit_view(view, spec, options, scratch, feature, bin_index);
   }
 
  private:
+  template <class BinIndex>
   bool refit_view(const detail::ColumnView<Scalar>& x, const FeatureSpec& spec,
                   const ScoringOptions& options, std::vector<Scalar>& scratch, Index feature,
-                  std::uint32_t* bin_index);
+                  BinIndex* bin_index);
 
   [[nodiscard]] Scalar wrap(Scalar x) const {
     Scalar t = x - lo_;
@@ -257,7 +262,8 @@ class Histogram {
   void place_uniform_edges(const detail::ColumnView<Scalar>& x, const FeatureSpec& spec,
                            std::vector<Scalar>& scratch, Index feature);
   void place_equal_frequency_edges(const Scalar* sorted, Index n, Index k);
-  void count(const detail::ColumnView<Scalar>& x, std::uint32_t* bin_index = nullptr);
+  template <class BinIndex = std::uint32_t>
+  void count(const detail::ColumnView<Scalar>& x, BinIndex* bin_index = nullptr);
   void score_bins(Index n, const ScoringOptions& options);
 
   std::vector<Scalar> edges_;
@@ -442,7 +448,8 @@ void Histogram<Scalar>::place_equal_frequency_edges(const Scalar* sorted, Index 
 }
 
 template <class Scalar>
-void Histogram<Scalar>::count(const detail::ColumnView<Scalar>& x, std::uint32_t* bin_index) {
+template <class BinIndex>
+void Histogram<Scalar>::count(const detail::ColumnView<Scalar>& x, BinIndex* bin_index) {
   const Index n = x.size;
   const auto k = static_cast<std::size_t>(edges_.size() - 1);
   counts_.assign(k, 0);
@@ -451,41 +458,51 @@ void Histogram<Scalar>::count(const detail::ColumnView<Scalar>& x, std::uint32_t
     for (Index i = 0; i < n; ++i) ++counts_[static_cast<std::size_t>(uniform_bin(x[i]))];
     return;
   }
-  if (!uniform_ || !(inv_width_ > Scalar(0))) {
+  constexpr auto int32_max = static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max());
+  if (!uniform_ || !(inv_width_ > Scalar(0)) || k > int32_max) {
     for (Index i = 0; i < n; ++i) {
       const auto b = static_cast<std::size_t>(in_range_bin(x[i]));
       ++counts_[b];
-      if (bin_index != nullptr) bin_index[i] = static_cast<std::uint32_t>(b);
+      if (bin_index != nullptr) bin_index[i] = static_cast<BinIndex>(b);
     }
     return;
   }
-  // Every value lies in [lo, hi] here. Four interleaved sub-histograms: consecutive values in
-  // the same bin increment different counters, so the increments do not serialise.
+  // Every value lies in [lo, hi] here. A block of bin indices is computed first, in a loop the
+  // compiler vectorises (truncation of (v - lo) * inv to int32, then a cap: hi and anything
+  // rounding past it belong to the last bin; the same arithmetic as uniform_bin), and then
+  // counted into four interleaved sub-histograms, so that consecutive values in the same bin
+  // increment different counters and the increments do not serialise.
   sub_counts_.assign(4 * k, 0);
   std::uint32_t* sub = sub_counts_.data();
   const Scalar lo = lo_, inv = inv_width_;
-  const auto last = static_cast<std::size_t>(k - 1);
-  auto bin = [&](Scalar v) { return std::min(static_cast<std::size_t>((v - lo) * inv), last); };
+  const auto last = static_cast<std::int32_t>(k - 1);
+  constexpr Index block = 256;
+  std::array<std::int32_t, block> b{};
+  auto slot = [&](Index i, std::size_t lane) {
+    return 4 * static_cast<std::size_t>(b[static_cast<std::size_t>(i)]) + lane;
+  };
   detail::with_access(x, [&](auto at) {
-    const Index n4 = n - n % 4;
-    if (bin_index == nullptr) {
-      for (Index i = 0; i < n4; i += 4) {
-        ++sub[4 * bin(at(i))];
-        ++sub[4 * bin(at(i + 1)) + 1];
-        ++sub[4 * bin(at(i + 2)) + 2];
-        ++sub[4 * bin(at(i + 3)) + 3];
+    for (Index start = 0; start < n; start += block) {
+      const Index m = std::min(block, n - start);
+      for (Index i = 0; i < m; ++i)
+        b[static_cast<std::size_t>(i)] =
+            std::min(static_cast<std::int32_t>((at(start + i) - lo) * inv), last);
+      const Index m4 = m - m % 4;
+      for (Index i = 0; i < m4; i += 4) {
+        ++sub[slot(i, 0)];
+        ++sub[slot(i + 1, 1)];
+        ++sub[slot(i + 2, 2)];
+        ++sub[slot(i + 3, 3)];
       }
-      for (Index i = n4; i < n; ++i) ++sub[4 * bin(at(i))];
-    } else {
-      for (Index i = 0; i < n; ++i) {
-        const std::size_t b = bin(at(i));
-        ++sub[4 * b + static_cast<std::size_t>(i & 3)];
-        bin_index[i] = static_cast<std::uint32_t>(b);
+      for (Index i = m4; i < m; ++i) ++sub[slot(i, 0)];
+      if (bin_index != nullptr) {
+        for (Index i = 0; i < m; ++i)
+          bin_index[start + i] = static_cast<BinIndex>(b[static_cast<std::size_t>(i)]);
       }
     }
   });
-  for (std::size_t b = 0; b < k; ++b)
-    counts_[b] = static_cast<Index>(sub[4 * b]) + sub[4 * b + 1] + sub[4 * b + 2] + sub[4 * b + 3];
+  for (std::size_t j = 0; j < k; ++j)
+    counts_[j] = static_cast<Index>(sub[4 * j]) + sub[4 * j + 1] + sub[4 * j + 2] + sub[4 * j + 3];
 }
 
 template <class Scalar>
@@ -574,9 +591,10 @@ void Histogram<Scalar>::score_bins(Index n, const ScoringOptions& options) {
 }
 
 template <class Scalar>
+template <class BinIndex>
 bool Histogram<Scalar>::refit_view(const detail::ColumnView<Scalar>& x, const FeatureSpec& spec,
                                    const ScoringOptions& options, std::vector<Scalar>& scratch,
-                                   Index feature, std::uint32_t* bin_index) {
+                                   Index feature, BinIndex* bin_index) {
   const Index n = x.size;
   detail::require(n > 0, "feature ", feature, ": cannot fit a histogram to no samples");
   periodic_ = spec.periodic;
@@ -593,9 +611,13 @@ bool Histogram<Scalar>::refit_view(const detail::ColumnView<Scalar>& x, const Fe
     // counted values is no longer the caller's, so no indices are recorded.
     const bool in_order =
         x.data != scratch.data() || spec.binning.rule != BinCountRule::FreedmanDiaconis;
-    count(x, in_order ? bin_index : nullptr);
+    const std::size_t last_bin = edges_.size() - 2;  // edges were just placed
+    const bool representable =
+        last_bin <= static_cast<std::size_t>(std::numeric_limits<BinIndex>::max());
+    const bool record = in_order && representable && bin_index != nullptr;
+    count(x, record ? bin_index : static_cast<BinIndex*>(nullptr));
     score_bins(n, options);
-    return in_order && bin_index != nullptr;
+    return record;
   }
 
   // Periodic features are binned as offsets into the period and equal-frequency bins need the
@@ -624,7 +646,7 @@ bool Histogram<Scalar>::refit_view(const detail::ColumnView<Scalar>& x, const Fe
       std::sort(scratch.begin(), scratch.end());
     place_equal_frequency_edges(scratch.data(), n, k);
   }
-  count(values);
+  count(values, static_cast<BinIndex*>(nullptr));
   score_bins(n, options);
   return false;
 }

@@ -62,9 +62,10 @@ class Workspace {
     contributions_.reserve(n * d);
     scores_.reserve(n);
     grow_mask(n);
-    scratch_.reserve(n);
-    storage_.reserve(n);
-    bin_index_.reserve(n);
+    buffers_.scratch.reserve(n);
+    buffers_.storage.reserve(n);
+    buffers_.bin_index.reserve(n * d);
+    buffers_.recorded.reserve(d);
     threshold_scratch_.reserve(n);
     histograms_.resize(std::max(histograms_.size(), d));
     for (auto& h : histograms_) h.reserve(bins);
@@ -85,30 +86,9 @@ class Workspace {
     const auto n = static_cast<std::size_t>(rows_);
     contributions_.resize(n * static_cast<std::size_t>(cols_));
     scores_.resize(n);
-    bin_index_.resize(n);
     grow_mask(n);
-    histograms_.resize(static_cast<std::size_t>(cols_));
-
-    // Fit and score column by column. Where the histogram records the bin each value was
-    // counted in, the training values are scored straight from those indices (one table load
-    // each, no range checks); otherwise through the general lookup.
-    for (Index j = 0; j < cols_; ++j) {
-      Histogram<Scalar>& h = histograms_[static_cast<std::size_t>(j)];
-      const auto column = x.derived().col(j);
-      Scalar* c = contributions_.data() + static_cast<std::size_t>(j) * n;
-      if (h.refit(column, params_.spec(j), params_.scoring, scratch_, j, bin_index_.data())) {
-        const Scalar* table = h.bin_contributions().data();
-        for (std::size_t i = 0; i < n; ++i) c[i] = table[bin_index_[i]];
-      } else {
-        h.contributions_into(detail::view_of(column, storage_), c, false, j);
-      }
-      Scalar* s = scores_.data();
-      if (j == 0) {
-        std::copy(c, c + n, s);
-      } else {
-        for (std::size_t i = 0; i < n; ++i) s[i] += c[i];
-      }
-    }
+    detail::fit_and_score_columns(histograms_, x, params_, buffers_, scores_.data(),
+                                  contributions_.data());
     const Eigen::Map<const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>> scores(scores_.data(), rows_);
 
     FrameSummary<Scalar> summary;
@@ -145,9 +125,8 @@ class Workspace {
   HbosParams params_;
   ThresholdRule rule_;
   std::vector<Histogram<Scalar>> histograms_;
-  std::vector<Scalar> scratch_, threshold_scratch_, scores_, contributions_;
-  std::vector<Scalar> storage_;           // columns of expressions without direct access
-  std::vector<std::uint32_t> bin_index_;  // the bin each training value was counted in
+  std::vector<Scalar> threshold_scratch_, scores_, contributions_;
+  detail::FitScoreBuffers<Scalar, std::uint16_t> buffers_;  // fitting and index scoring
   // Not std::vector<bool>: the mask must be addressable as bool[] for the Eigen map.
   std::unique_ptr<bool[]> inlier_;
   std::size_t inlier_capacity_ = 0;

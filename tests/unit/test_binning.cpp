@@ -76,7 +76,7 @@ TEST_CASE("width rules fall back to Sturges when the width degenerates", "[binni
   CHECK(bins_for(x, hbos::BinCountRule::FreedmanDiaconis) == 8);
 }
 
-TEST_CASE("Birgé–Rozenblac: the O(n log n) search equals a brute-force count", "[binning]") {
+TEST_CASE("Birgé–Rozenblac: the O(n) search equals a brute-force count", "[binning]") {
   std::mt19937 rng(42);
   std::normal_distribution<double> normal;
   std::exponential_distribution<double> expo(1.0);
@@ -93,6 +93,73 @@ TEST_CASE("Birgé–Rozenblac: the O(n log n) search equals a brute-force count"
     INFO("trial " << trial << ", n = " << n);
     const auto ours = bins_for(x, hbos::BinCountRule::BirgeRozenblac);
     CHECK(ours == brute_force_birge(x));
+  }
+}
+
+TEST_CASE("Birgé–Rozenblac's edge counter is exact for every candidate and edge", "[binning]") {
+  // The counter compares only the values of the edge's own cell unless the edge sits within
+  // 1e-4 of a cell boundary. Data with values exactly on candidate edges and on cell boundaries
+  // (integer grids, whose range makes k/b land on values and on cell edges alike), heavy ties and
+  // extreme outliers probe exactly those cases; every (b, k) is checked against a direct count.
+  std::vector<Eigen::VectorXd> sets;
+  sets.push_back(linear_grid(720));                             // 719 = range: many exact hits
+  sets.push_back(linear_grid(1025));                            // range 1024: powers of two
+  sets.push_back(Eigen::VectorXd::LinSpaced(4096, -1.0, 1.0));  // cells of exactly 4 values
+  Eigen::VectorXd ties(3000);
+  for (Eigen::Index i = 0; i < ties.size(); ++i) ties(i) = static_cast<double>(i % 7) * 0.125;
+  sets.push_back(ties);
+  std::mt19937 rng(9);
+  std::normal_distribution<double> normal;
+  Eigen::VectorXd outlier(2500);
+  for (Eigen::Index i = 0; i < outlier.size(); ++i) outlier(i) = normal(rng);
+  outlier(17) = 1e6;  // squeezes every other value into the first cells
+  sets.push_back(outlier);
+  // Every edge k/b itself and its two floating-point neighbours, on [0, 1]: here the rounding of
+  // u M and u b can disagree, which is what the boundary rule guards (without it: 44 mismatches).
+  std::vector<double> fractions{0.0, 1.0};
+  for (int b = 2; b <= 80; ++b) {
+    for (int k = 1; k < b; ++k) {
+      const double e = static_cast<double>(k) / static_cast<double>(b);
+      fractions.insert(fractions.end(), {e, std::nextafter(e, 0.0), std::nextafter(e, 2.0)});
+    }
+  }
+  sets.push_back(Eigen::Map<const Eigen::VectorXd>(fractions.data(),
+                                                   static_cast<Eigen::Index>(fractions.size())));
+
+  std::vector<double> values;
+  std::vector<std::uint32_t> index;
+  for (std::size_t s = 0; s < sets.size(); ++s) {
+    const Eigen::VectorXd& x = sets[s];
+    const double lo = x.minCoeff(), hi = x.maxCoeff();
+    const double inv_range = 1.0 / (hi - lo);
+    hbos::detail::EdgeCounter counter(x.data(), x.size(), 1, lo, hi, values, index);
+    const auto b_max = static_cast<Eigen::Index>(std::sqrt(static_cast<double>(x.size())));
+    auto direct = [&](Eigen::Index b, Eigen::Index k) {
+      std::uint32_t count = 0;
+      for (const double v : x)
+        count += (v - lo) * inv_range * static_cast<double>(b) < static_cast<double>(k) ? 1U : 0U;
+      return count;
+    };
+    // Single queries.
+    std::size_t mismatches = 0;
+    for (Eigen::Index b = 2; b <= b_max; ++b)
+      for (Eigen::Index k = 1; k < b; ++k)
+        if (counter.below(static_cast<double>(b), static_cast<double>(k)) != direct(b, k))
+          ++mismatches;
+    // The sweep: every (b, k) exactly once, each b in increasing k, with the same counts.
+    std::vector<Eigen::Index> last_k(static_cast<std::size_t>(b_max) + 1, 0);
+    std::size_t visits = 0, out_of_order = 0, sweep_mismatches = 0;
+    counter.for_each_edge(b_max, [&](std::uint32_t b, std::uint32_t k, std::uint32_t below) {
+      ++visits;
+      if (static_cast<Eigen::Index>(k) != last_k[b] + 1) ++out_of_order;
+      last_k[b] = k;
+      if (below != direct(b, k)) ++sweep_mismatches;
+    });
+    INFO("data set " << s);
+    CHECK(mismatches == 0);
+    CHECK(sweep_mismatches == 0);
+    CHECK(out_of_order == 0);
+    CHECK(visits == static_cast<std::size_t>((b_max - 1) * b_max / 2));
   }
 }
 

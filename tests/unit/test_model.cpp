@@ -166,6 +166,69 @@ TEST_CASE("maps, blocks and row-major buffers give the same scores", "[model]") 
   CHECK(into == reference);
 }
 
+TEST_CASE("fit_and_score gives exactly fit + score, in every mode and input form",
+          "[model][fit_and_score]") {
+  // The fast path scores each training value from the bin it was counted in; the reference
+  // looks every value up again. Bitwise equality is the "one interval convention" in action.
+  auto modes = all_modes();
+  hbos::HbosParams p;
+  p.feature.binning.method = hbos::BinningMethod::FixedWidth;
+  p.feature.binning.width = 0.37;
+  p.feature.binning.shifts = 1;
+  p.feature.tail = hbos::Tail::Lower;
+  modes.push_back(p);  // fixed width anchored at 0, one-sided
+  p = {};
+  p.features = {hbos::angle_feature(12), hbos::default_feature(), hbos::default_feature()};
+  modes.push_back(p);  // a periodic feature takes the lookup path, the others the indices
+  p = {};
+  p.feature.binning.method = hbos::BinningMethod::FixedWidth;
+  p.feature.binning.width = 1e-4;
+  p.feature.binning.shifts = 1;
+  p.feature.binning.max_bins = 1 << 20;
+  modes.push_back(p);  // > 65536 bins: too many for 16-bit indices, falls back to the lookup
+  p = {};
+  p.feature.binning.rule = hbos::BinCountRule::Sqrt;
+  modes.push_back(p);
+
+  for (std::uint32_t seed = 1; seed <= 10; ++seed) {
+    const Eigen::Index n = 1 + static_cast<Eigen::Index>(seed * 97 % 1500);
+    const Matrix x = make_data(seed, n, 3);
+    for (std::size_t m = 0; m < modes.size(); ++m) {
+      INFO("seed " << seed << ", mode " << m << ", n " << n);
+      Eigen::VectorXd training(n);
+      const auto model = hbos::Hbosd::fit_and_score(x, training, modes[m]);
+      CHECK(training == model.score(x));
+      CHECK(training == hbos::Hbosd::fit(x, modes[m]).score(x));
+      for (Eigen::Index j = 0; j < 3; ++j)
+        CHECK(model.histogram(j).counts() == hbos::Hbosd::fit(x, modes[m]).histogram(j).counts());
+    }
+  }
+
+  // Blocks (strided columns), row-major buffers and float.
+  const Matrix x = make_data(77, 300, 2);
+  Matrix wide = Matrix::Zero(310, 4);
+  wide.block(5, 1, 300, 2) = x;
+  const Eigen::VectorXd reference = hbos::Hbosd::fit(x).score(x);
+  Eigen::VectorXd training(300);
+  (void)hbos::Hbosd::fit_and_score(wide.block(5, 1, 300, 2), training);
+  CHECK(training == reference);
+  const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> row_major = x;
+  (void)hbos::Hbosd::fit_and_score(row_major, training);
+  CHECK(training == reference);
+  const Eigen::MatrixXf xf = x.cast<float>();
+  Eigen::VectorXf training_f(300);
+  const auto model_f = hbos::Hbosf::fit_and_score(xf, training_f);
+  CHECK(training_f == model_f.score(xf));
+
+  Eigen::VectorXd wrong_size(7);
+  CHECK_THROWS_WITH(hbos::Hbosd::fit_and_score(x, wrong_size),
+                    Catch::Contains("7 entries for 300 rows"));
+  Matrix bad = x;
+  bad(3, 1) = std::numeric_limits<double>::quiet_NaN();
+  CHECK_THROWS_WITH(hbos::Hbosd::fit_and_score(bad, training),
+                    Catch::Contains("X(3, 1) is not finite"));
+}
+
 TEST_CASE("one fitted model scores from many threads", "[model][threads]") {
   const Matrix x = make_data(8, 2000, 4);
   const auto model = hbos::Hbosd::fit(x);
