@@ -5,15 +5,13 @@
 ///
 /// Bin-count rules (n samples, range R = max - min):
 ///
-/// | rule              | bins k                                            | reference |
-/// |-------------------|---------------------------------------------------|----------------------------|
-/// | Fixed             | `Binning::bins`                                   | | | Sqrt |
-/// ceil(sqrt(n))                                     | Goldstein & Dengel 2012 (HBOS) | | Sturges
-/// | ceil(log2(n) + 1)                                 | Sturges 1926               | | Scott |
-/// ceil(R / h), h = (24 sqrt(pi) / n)^(1/3) * std    | Scott 1979                 | |
-/// FreedmanDiaconis  | ceil(R / h), h = 2 IQR n^(-1/3)                   | Freedman & Diaconis 1981
-/// | | BirgeRozenblac    | argmax_b sum_k N_k ln(b N_k / n) - (b - 1 + ln(b)^2.5), b
-/// = 1..floor(sqrt(n)) | Birgé & Rozenblac 2006, eq. (2) |
+/// - Fixed: `Binning::bins`.
+/// - Sqrt: ceil(sqrt(n)) (Goldstein & Dengel 2012, the HBOS paper's default).
+/// - Sturges: ceil(log2(n) + 1) (Sturges 1926).
+/// - Scott: ceil(R / h), h = (24 sqrt(pi) / n)^(1/3) * std (Scott 1979).
+/// - FreedmanDiaconis: ceil(R / h), h = 2 IQR n^(-1/3) (Freedman & Diaconis 1981).
+/// - BirgeRozenblac: argmax over b = 1..floor(sqrt(n)) of
+///   sum_k N_k ln(b N_k / n) - (b - 1 + ln(b)^2.5) (Birgé & Rozenblac 2006, eq. (2)).
 ///
 /// Scott and Freedman–Diaconis fall back to Sturges when their width is zero (constant or
 /// heavily tied data). Birgé–Rozenblac counts its penalty once per candidate b, as published
