@@ -4,14 +4,15 @@
 /// them with one assignment: the HBOS screen (in its default and its literal `paper` form) and
 /// the baselines it is measured against.
 ///
-/// | strategy        | rejects match i when                                   | source |
-/// |-----------------|--------------------------------------------------------|--------|
-/// | HbosScreen      | its HBOS score on residual features > the threshold    | this library;
-/// `paper()` = the HBOS-SLAM paper | | FixedPixelGate  | \|r_i\| > max_px | common practice | |
-/// ChiSquareGate   | \|r_i\|^2 / sigma_i^2 > 5.991 (2 dof) or 7.815 (3 dof)   | ORB-SLAM2
-/// Optimizer::PoseOptimization | | QuantileGate    | \|r_i\| > the 0.8 quantile of \|r\| over
-/// unflagged matches | CFP-SLAM's adaptive threshold | | MadGate         | \|r_i\|/sigma_i > median
-/// + k * 1.4826 * MAD             | robust z-score |
+/// Each strategy rejects match i when:
+/// - HbosScreen: its HBOS score on residual features > the threshold (this library; `paper()` =
+///   the HBOS-SLAM paper).
+/// - FixedPixelGate: |r_i| > max_px (common practice).
+/// - ChiSquareGate: |r_i|^2 / sigma_i^2 > 5.991 (2 dof) or 7.815 (3 dof) (ORB-SLAM2,
+///   Optimizer::PoseOptimization).
+/// - QuantileGate: |r_i| > the 0.8 quantile of |r| over unflagged matches (CFP-SLAM's adaptive
+///   threshold).
+/// - MadGate: |r_i| / sigma_i > median + k * 1.4826 * MAD (robust z-score).
 ///
 /// Each strategy's `score` is its decision statistic (higher = worse) and its threshold the
 /// cut on it, so results of every strategy read the same way.

@@ -5,12 +5,11 @@
 /// Convention for every rule (as PyOD's `labels_`): a sample is an **outlier when its score is
 /// strictly greater than the threshold**; inliers have `score <= threshold`.
 ///
-/// | rule            | threshold                                                 | source |
-/// |-----------------|-----------------------------------------------------------|---------------------|
-/// | AdaptiveRange   | `range_alpha * (max - min) + min`                         | the HBOS-SLAM
-/// paper, eq. 6 | | Contamination   | the `(1 - c)` percentile, numpy's linear interpolation    |
-/// PyOD `threshold_`   | | MedianMad       | `median + k * s * MAD`, `s = 1.4826` when
-/// `scale_to_sigma` | robust statistics   | | FixedThreshold  | `value` |                     |
+/// - AdaptiveRange: `range_alpha * (max - min) + min` (the HBOS-SLAM paper, eq. 6).
+/// - Contamination: the `(1 - c)` percentile with numpy's linear interpolation (PyOD's
+///   `threshold_`).
+/// - MedianMad: `median + k * s * MAD`, `s = 1.4826` when `scale_to_sigma` (robust statistics).
+/// - FixedThreshold: `value`.
 ///
 /// Threading: every function here is re-entrant; the scratch buffer is the caller's.
 
