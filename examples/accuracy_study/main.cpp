@@ -15,9 +15,9 @@
 #include <string>
 #include <vector>
 
-#include "atomic_file.hpp"
 #include "checks.hpp"
 #include "column_selector.hpp"
+#include "common/atomic_file.hpp"
 #include "csv_reader.hpp"
 #include "report.hpp"
 #include "study.hpp"
@@ -108,8 +108,8 @@ int study_main(int argc, char** argv) {
 
     const std::string table = study::format_markdown(result, seed);
     std::fputs(table.c_str(), stdout);
-    if (!markdown.empty()) cli::write_file_atomically(markdown, table);
-    if (!csv.empty()) cli::write_file_atomically(csv, study::format_csv(result));
+    if (!markdown.empty()) examples::write_file_atomically(markdown, table);
+    if (!csv.empty()) examples::write_file_atomically(csv, study::format_csv(result));
 
     const std::vector<std::string> failures = study::check_targets(result, targets);
     for (const std::string& failure : failures)

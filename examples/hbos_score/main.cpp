@@ -15,8 +15,8 @@
 #include <string>
 #include <vector>
 
-#include "atomic_file.hpp"
 #include "column_selector.hpp"
+#include "common/atomic_file.hpp"
 #include "csv_reader.hpp"
 #include "results_csv.hpp"
 #include "score_options.hpp"
@@ -82,7 +82,8 @@ char parse_delimiter(const std::string& text) {
 int run(const ScoreOptions& options) {
   const CsvTable table = read_csv(options.input, options.csv);
   const ScoredTable scored = score_table(options, table);
-  write_file_atomically(options.output, format_results(scored, table, options.contributions));
+  hbos::examples::write_file_atomically(options.output,
+                                        format_results(scored, table, options.contributions));
   if (!options.quiet) std::fputs(format_summary(options, table, scored).c_str(), stderr);
   return 0;
 }
@@ -219,7 +220,7 @@ int score_main(int argc, char** argv) {
     // hbos::InvalidArgument (data or parameters the model rejects) and our own option checks.
     std::fprintf(stderr, "hbos-score: error: %s\n", e.what());
     return kExitBadInput;
-  } catch (const WriteError& e) {
+  } catch (const hbos::examples::WriteError& e) {
     std::fprintf(stderr, "hbos-score: error: %s\n", e.what());
     return kExitError;
   } catch (const std::exception& e) {

@@ -1,6 +1,6 @@
 #include "eval/eval_command.hpp"
 
-#include "eval/atomic_file.hpp"
+#include "common/atomic_file.hpp"
 #include "eval/evaluate.hpp"
 #include "eval/plot.hpp"
 #include "eval/report.hpp"
@@ -133,7 +133,7 @@ int run(const CommandOptions& o, std::ostream& out, std::ostream& err) {
       j["inputs"] = inputs;
       j["settings"]["stamp_policy"] = o.lenient_duplicates ? "like_tum_scripts" : "strict";
       j["settings"]["quaternion_tolerance"] = o.quaternion_tolerance;
-      write_file_atomically(o.json_path, j.dump(1) + "\n");
+      examples::write_file_atomically(o.json_path, j.dump(1) + "\n");
       out << "wrote " << o.json_path << "\n";
     }
     if (!o.plot_dir.empty()) {

@@ -1,6 +1,6 @@
 #include "eval/plot.hpp"
 
-#include "eval/atomic_file.hpp"
+#include "common/atomic_file.hpp"
 
 #include <fmt/format.h>
 #include <hbos/error.hpp>
@@ -452,8 +452,8 @@ std::vector<std::string> write_plots(const std::string& dir, const Trajectory& g
       throw std::runtime_error("cannot encode " + name + " as PNG");
     }
     const std::filesystem::path path = std::filesystem::path(dir) / name;
-    write_file_atomically(path,
-                          std::string_view(reinterpret_cast<const char*>(png.data()), png.size()));
+    examples::write_file_atomically(
+        path, std::string_view(reinterpret_cast<const char*>(png.data()), png.size()));
     written.push_back(path.string());
   }
   return written;

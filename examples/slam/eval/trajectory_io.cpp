@@ -1,6 +1,6 @@
 #include "eval/trajectory_io.hpp"
 
-#include "eval/atomic_file.hpp"
+#include "common/atomic_file.hpp"
 
 #include <fmt/format.h>
 #include <hbos/error.hpp>
@@ -216,7 +216,7 @@ void write_tum_trajectory(const std::string& path, const Trajectory& trajectory)
                    trajectory.stamps[static_cast<std::size_t>(i)], p.x(), p.y(), p.z(), q(0), q(1),
                    q(2), q(3));
   }
-  write_file_atomically(path, text);
+  examples::write_file_atomically(path, text);
 }
 
 std::vector<double> read_frame_stamps(const std::string& path) {

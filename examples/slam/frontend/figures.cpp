@@ -1,6 +1,6 @@
 #include "frontend/figures.hpp"
 
-#include "eval/atomic_file.hpp"
+#include "common/atomic_file.hpp"
 
 #include <fmt/format.h>
 
@@ -192,7 +192,7 @@ void write_png(const std::string& path, const cv::Mat& image) {
   if (!cv::imencode(".png", image, bytes)) {
     throw std::runtime_error("cannot encode PNG '" + path + "'");
   }
-  write_file_atomically(
+  examples::write_file_atomically(
       path, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
 }
 

@@ -9,7 +9,7 @@
 //
 // Exit codes: 0 success; 2 bad options or unreadable input; 1 output not written.
 
-#include "eval/atomic_file.hpp"
+#include "common/atomic_file.hpp"
 #include "eval/trajectory_io.hpp"
 #include "frontend/dataset.hpp"
 
@@ -49,7 +49,7 @@ void write_image(const fs::path& path, const cv::Mat& image, const std::vector<i
   if (!cv::imencode(path.extension().string(), image, bytes, params)) {
     throw std::runtime_error(fmt::format("cannot encode '{}'", path.string()));
   }
-  hbos::slam::write_file_atomically(
+  hbos::examples::write_file_atomically(
       path, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
 }
 
@@ -77,17 +77,17 @@ void prepare_fr1(const fs::path& source, const fs::path& out) {
                 {cv::IMWRITE_JPEG_QUALITY, kJpegQuality});
     rgb_list += fmt::format("{} {}\n", stem_of(image.path), name);
   }
-  hbos::slam::write_file_atomically(out / "rgb.txt", rgb_list);
+  hbos::examples::write_file_atomically(out / "rgb.txt", rgb_list);
 
   std::string depth_list =
       "# depth maps of TUM rgbd_dataset_freiburg1_xyz, first 37 frames (16-bit PNG, 5000 = 1 m)\n"
       "# copied unchanged\n"
       "# timestamp filename\n";
   for (const auto& image : depth) {
-    hbos::slam::write_file_atomically(out / image.path, read_bytes(source / image.path));
+    hbos::examples::write_file_atomically(out / image.path, read_bytes(source / image.path));
     depth_list += fmt::format("{} {}\n", stem_of(image.path), image.path);
   }
-  hbos::slam::write_file_atomically(out / "depth.txt", depth_list);
+  hbos::examples::write_file_atomically(out / "depth.txt", depth_list);
 
   // Ground truth over the frames' span +- 1 s: enough for association, a fraction of the file.
   const double begin = std::min(rgb.front().stamp, depth.front().stamp) - kGroundTruthMargin;
@@ -105,7 +105,7 @@ void prepare_fr1(const fs::path& source, const fs::path& out) {
     const double stamp = std::stod(line.substr(0, line.find(' ')));
     if (stamp >= begin && stamp <= end) trimmed += line + "\n";
   }
-  hbos::slam::write_file_atomically(out / "groundtruth.txt", trimmed);
+  hbos::examples::write_file_atomically(out / "groundtruth.txt", trimmed);
   // Read back: the trimmed file must still be a valid trajectory.
   static_cast<void>(hbos::slam::read_tum_trajectory((out / "groundtruth.txt").string()));
   std::cout << fmt::format(
@@ -148,7 +148,7 @@ void prepare_person(const fs::path& fr3, const fs::path& out, cv::Point seed) {
   write_image(out / "depth.png", depth_crop);
   // The whole frame and its mask, for the detector test on a real image.
   write_image(out / "source_frame.jpg", rgb, {cv::IMWRITE_JPEG_QUALITY, kJpegQuality});
-  hbos::slam::write_file_atomically(out / "source_mask.png", read_bytes(mask_path));
+  hbos::examples::write_file_atomically(out / "source_mask.png", read_bytes(mask_path));
   std::cout << fmt::format("person: box x {} y {} w {} h {}, {} pixels\n", box.x, box.y, box.width,
                            box.height, cv::countNonZero(person));
 }
@@ -158,11 +158,11 @@ void prepare_models(const fs::path& models, const fs::path& out) {
   fs::create_directories(body);
   for (const char* name :
        {"yolo-fastest-1.1_body.cfg", "yolo-fastest-1.1_body.weights", "body.names"}) {
-    hbos::slam::write_file_atomically(body / name,
-                                      read_bytes(models / "yolo-fastest-1.1_body" / name));
+    hbos::examples::write_file_atomically(body / name,
+                                          read_bytes(models / "yolo-fastest-1.1_body" / name));
   }
-  hbos::slam::write_file_atomically(out / "LICENSE.darknet-YOLO.txt",
-                                    read_bytes(models / "LICENSE.darknet-YOLO.txt"));
+  hbos::examples::write_file_atomically(out / "LICENSE.darknet-YOLO.txt",
+                                        read_bytes(models / "LICENSE.darknet-YOLO.txt"));
   std::cout << "models: yolo-fastest-1.1_body copied\n";
 }
 

@@ -1,6 +1,6 @@
 #include "frontend/run_outputs.hpp"
 
-#include "eval/atomic_file.hpp"
+#include "common/atomic_file.hpp"
 #include "eval/plot.hpp"
 #include "eval/report.hpp"
 #include "eval/trajectory_io.hpp"
@@ -112,10 +112,10 @@ std::vector<std::string> write_run_outputs(const std::string& dir, const RunResu
   const Trajectory estimate = estimate_of(run, "hbos-slam");
   write_tum_trajectory(path("trajectory.txt"), estimate);
   written.push_back(path("trajectory.txt"));
-  write_file_atomically(path("stats.csv"), stats_csv(run.stats));
+  examples::write_file_atomically(path("stats.csv"), stats_csv(run.stats));
   written.push_back(path("stats.csv"));
-  write_file_atomically(path("summary.json"),
-                        summary_json(run, config, camera_name).dump(1) + "\n");
+  examples::write_file_atomically(path("summary.json"),
+                                  summary_json(run, config, camera_name).dump(1) + "\n");
   written.push_back(path("summary.json"));
 
   if (run.figure) {

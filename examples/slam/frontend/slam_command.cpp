@@ -1,6 +1,6 @@
 #include "frontend/slam_command.hpp"
 
-#include "eval/atomic_file.hpp"
+#include "common/atomic_file.hpp"
 #include "frontend/ablation.hpp"
 #include "frontend/camera.hpp"
 #include "frontend/config.hpp"
@@ -177,8 +177,8 @@ int run_ablation_command(const CommandOptions& o, const CameraModel& camera,
       throw std::runtime_error("cannot create '" + config.output.dir + "': " + error.message());
     const auto md_path = (std::filesystem::path(config.output.dir) / "ablation.md").string();
     const auto csv_path = (std::filesystem::path(config.output.dir) / "ablation.csv").string();
-    write_file_atomically(md_path, md);
-    write_file_atomically(csv_path, ablation_csv(rows));
+    examples::write_file_atomically(md_path, md);
+    examples::write_file_atomically(csv_path, ablation_csv(rows));
     out << "wrote " << md_path << "\nwrote " << csv_path << "\n";
   } catch (const std::runtime_error& e) {
     err << "hbos-slam: error: " << e.what() << "\n";

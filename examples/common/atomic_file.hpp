@@ -1,12 +1,14 @@
 #pragma once
 /// \file
-/// Writing a result file so that readers see either the old file or the complete new one.
+/// Writing a result file so that readers see either the old file or the complete new one (shared
+/// by every example command: hbos-score, the accuracy study, hbos-eval, hbos-slam).
 
+#include <filesystem>
 #include <stdexcept>
 #include <string>
 #include <string_view>
 
-namespace hbos::cli {
+namespace hbos::examples {
 
 /// A file could not be written; `what()` names the path and the system's reason.
 class WriteError : public std::runtime_error {
@@ -20,6 +22,6 @@ class WriteError : public std::runtime_error {
 /// an error of this process, not against power loss (there is no fsync).
 /// `path` == "-" writes to standard output instead (not atomic, by nature).
 /// \throws WriteError on any failure.
-void write_file_atomically(const std::string& path, std::string_view content);
+void write_file_atomically(const std::filesystem::path& path, std::string_view content);
 
-}  // namespace hbos::cli
+}  // namespace hbos::examples

@@ -1,4 +1,4 @@
-#include "atomic_file.hpp"
+#include "common/atomic_file.hpp"
 
 #include <cerrno>
 #include <cstdio>
@@ -6,7 +6,7 @@
 #include <random>
 #include <system_error>
 
-namespace hbos::cli {
+namespace hbos::examples {
 namespace {
 
 std::string reason() { return std::generic_category().message(errno); }
@@ -23,7 +23,8 @@ bool write_and_close(std::FILE* file, std::string_view content) {
 
 }  // namespace
 
-void write_file_atomically(const std::string& path, std::string_view content) {
+void write_file_atomically(const std::filesystem::path& target, std::string_view content) {
+  const std::string path = target.string();
   if (path == "-") {
     const bool written = std::fwrite(content.data(), 1, content.size(), stdout) == content.size();
     if (!written || std::fflush(stdout) != 0) {
@@ -31,7 +32,6 @@ void write_file_atomically(const std::string& path, std::string_view content) {
     }
     return;
   }
-  const std::filesystem::path target(path);
   if (target.filename().empty()) throw WriteError(path + ": not a file name");
 
   // "wx" (C11, exclusive creation) fails instead of reusing an existing file, so a stale or
@@ -60,4 +60,4 @@ void write_file_atomically(const std::string& path, std::string_view content) {
   }
 }
 
-}  // namespace hbos::cli
+}  // namespace hbos::examples
