@@ -116,7 +116,9 @@ template <class Scalar>
 std::pair<Scalar, Scalar> finite_min_max(const ColumnView<Scalar>& x, Eigen::Index feature) {
   // v * 0 is 0 for finite v and NaN otherwise, so one accumulated sum checks finiteness in the
   // same pass. GCC does not vectorise min/max reductions on its own; on contiguous data Eigen's
-  // packet primitives do it explicitly (SSE2 and up), two packets per step for parallelism.
+  // packet primitives do it explicitly (SSE2 and up). Four packets per step, each with its own
+  // min and max accumulator: with fewer, the loop waits on the latency of the min/max chains
+  // (measured: 2x slower than a streaming sum at 1e6 rows) instead of on memory.
   Scalar lo = x[0], hi = x[0], check = 0;
   Eigen::Index i = 0;
   if (x.stride == 1) {
@@ -125,21 +127,28 @@ std::pair<Scalar, Scalar> finite_min_max(const ColumnView<Scalar>& x, Eigen::Ind
     if constexpr (P > 1) {
       namespace in = Eigen::internal;
       const Scalar* p = x.data;
-      Packet lo0 = in::pset1<Packet>(lo), lo1 = lo0, hi0 = lo0, hi1 = lo0;
-      Packet c0 = in::pset1<Packet>(Scalar(0)), c1 = c0;
-      const Packet zero = c0;
-      for (; i + 2 * P <= x.size; i += 2 * P) {
+      Packet lo0 = in::pset1<Packet>(lo), lo1 = lo0, lo2 = lo0, lo3 = lo0;
+      Packet hi0 = lo0, hi1 = lo0, hi2 = lo0, hi3 = lo0;
+      const Packet zero = in::pset1<Packet>(Scalar(0));
+      Packet c0 = zero, c1 = zero;
+      for (; i + 4 * P <= x.size; i += 4 * P) {
         const Packet a = in::ploadu<Packet>(p + i);
         const Packet b = in::ploadu<Packet>(p + i + P);
+        const Packet c = in::ploadu<Packet>(p + i + 2 * P);
+        const Packet d = in::ploadu<Packet>(p + i + 3 * P);
         lo0 = in::pmin(lo0, a);
         lo1 = in::pmin(lo1, b);
+        lo2 = in::pmin(lo2, c);
+        lo3 = in::pmin(lo3, d);
         hi0 = in::pmax(hi0, a);
         hi1 = in::pmax(hi1, b);
-        c0 = in::padd(c0, in::pmul(a, zero));
-        c1 = in::padd(c1, in::pmul(b, zero));
+        hi2 = in::pmax(hi2, c);
+        hi3 = in::pmax(hi3, d);
+        c0 = in::padd(c0, in::padd(in::pmul(a, zero), in::pmul(b, zero)));
+        c1 = in::padd(c1, in::padd(in::pmul(c, zero), in::pmul(d, zero)));
       }
-      lo = in::predux_min(in::pmin(lo0, lo1));
-      hi = in::predux_max(in::pmax(hi0, hi1));
+      lo = in::predux_min(in::pmin(in::pmin(lo0, lo1), in::pmin(lo2, lo3)));
+      hi = in::predux_max(in::pmax(in::pmax(hi0, hi1), in::pmax(hi2, hi3)));
       check = in::predux(in::padd(c0, c1));
     }
   }

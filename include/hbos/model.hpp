@@ -125,6 +125,7 @@ struct FitScoreBuffers {
   std::vector<Scalar> storage;          // columns of expressions without direct access
   std::vector<BinIndex> bin_index;      // n x d, column-major: the bin each value was counted in
   std::vector<unsigned char> recorded;  // per feature: whether its bin indices were recorded
+  std::vector<Scalar> pair_table;       // contributions of features 0 and 1 summed, per bin pair
 };
 
 /// Fits `histograms` to `x` like fit_histograms and scores the training rows in the same sweep:
@@ -189,9 +190,32 @@ void fit_and_score_columns(std::vector<Histogram<Scalar>>& histograms,
   // re-evaluate them per block).
   constexpr bool direct = (Derived::Flags & Eigen::DirectAccessBit) != 0;
   const std::size_t block = direct ? 2048 : n;
+  // The first two features, when both were scored by index and their bins are few: one load
+  // from a table of t0[a] + t1[b] instead of two (the same Scalar sum, so the same bits).
+  const std::size_t k0 = static_cast<std::size_t>(histograms[0].bins());
+  const std::size_t k1 = d > 1 ? static_cast<std::size_t>(histograms[1].bins()) : 0;
+  const bool paired =
+      d > 1 && buffers.recorded[0] != 0 && buffers.recorded[1] != 0 && k0 * k1 <= 4096;
+  if (paired) {
+    const Scalar* t0 = histograms[0].bin_contributions().data();
+    const Scalar* t1 = histograms[1].bin_contributions().data();
+    buffers.pair_table.resize(k0 * k1);
+    for (std::size_t a = 0; a < k0; ++a)
+      for (std::size_t b = 0; b < k1; ++b) buffers.pair_table[a * k1 + b] = t0[a] + t1[b];
+  }
   for (std::size_t start = 0; start < n; start += block) {
     const std::size_t m = std::min(block, n - start);
-    for (std::size_t j = 0; j < d; ++j) contributions_of(j, start, m, scores + start, j > 0);
+    std::size_t j = 0;
+    if (paired) {
+      const Scalar* table = buffers.pair_table.data();
+      const BinIndex* b0 = buffers.bin_index.data() + start;
+      const BinIndex* b1 = b0 + n;
+      Scalar* out = scores + start;
+      for (std::size_t i = 0; i < m; ++i)
+        out[i] = table[static_cast<std::size_t>(b0[i]) * k1 + b1[i]];
+      j = 2;
+    }
+    for (; j < d; ++j) contributions_of(j, start, m, scores + start, j > 0);
   }
 }
 
