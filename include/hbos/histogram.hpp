@@ -111,9 +111,16 @@ void with_access(const ColumnView<Scalar>& x, Body&& body) {
   }
 }
 
-/// min and max of a column in one pass, throwing on any NaN or infinity.
+/// min and max of a column in one pass, and whether every value is finite.
 template <class Scalar>
-std::pair<Scalar, Scalar> finite_min_max(const ColumnView<Scalar>& x, Eigen::Index feature) {
+struct MinMax {
+  Scalar lo, hi;
+  bool finite;
+};
+
+/// One pass over `x` (at least one value): its min, its max and whether all values are finite.
+template <class Scalar>
+MinMax<Scalar> scan_min_max(const ColumnView<Scalar>& x) {
   // v * 0 is 0 for finite v and NaN otherwise, so one accumulated sum checks finiteness in the
   // same pass. GCC does not vectorise min/max reductions on its own; on contiguous data Eigen's
   // packet primitives do it explicitly (SSE2 and up). Four packets per step, each with its own
@@ -158,8 +165,15 @@ std::pair<Scalar, Scalar> finite_min_max(const ColumnView<Scalar>& x, Eigen::Ind
     hi = v > hi ? v : hi;
     check += v * Scalar(0);
   }
-  if (!(check == Scalar(0))) throw_not_finite(x, feature);
-  return {lo, hi};
+  return {lo, hi, check == Scalar(0)};
+}
+
+/// min and max of a column in one pass, throwing on any NaN or infinity.
+template <class Scalar>
+std::pair<Scalar, Scalar> finite_min_max(const ColumnView<Scalar>& x, Eigen::Index feature) {
+  const MinMax<Scalar> r = scan_min_max(x);
+  if (!r.finite) throw_not_finite(x, feature);
+  return {r.lo, r.hi};
 }
 
 }  // namespace detail
@@ -303,23 +317,50 @@ void Histogram<Scalar>::contributions_into(const detail::ColumnView<Scalar>& x, 
   // Local copies: the compiler cannot prove that stores to `out` leave the members unchanged and
   // would otherwise reload them after every store.
   const Scalar lo = lo_, hi = hi_, inv = inv_width_;
-  const auto bins_f = static_cast<Scalar>(bins());
   const Scalar* table = contribution_.data();
-  const bool fast = uniform_ && inv > Scalar(0);
-  // The fast path takes in-range values strictly below the top edge; everything else (the top
-  // edge, out of range, periodic wrap, irregular bins, NaN) takes the exact slow path, which
-  // agrees with the fast path wherever both apply.
-  auto value_of = [&](Scalar v) {
-    const Scalar t = (v - lo) * inv;
-    if (fast && t >= Scalar(0) && t < bins_f && v < hi) return table[static_cast<Index>(t)];
+  const bool fast =
+      uniform_ && inv > Scalar(0) && bins() <= std::numeric_limits<std::int32_t>::max();
+  // The exact path, for any value: the lookup of contribution(), throwing on non-finite values.
+  auto exact = [&](Scalar v) {
     if (!std::isfinite(v)) detail::throw_not_finite(x, feature);
     return contribution(v);
   };
   detail::with_access(x, [&](auto at) {
-    if (accumulate) {
-      for (Index i = 0; i < x.size; ++i) out[i] += value_of(at(i));
-    } else {
-      for (Index i = 0; i < x.size; ++i) out[i] = value_of(at(i));
+    if (!fast) {
+      for (Index i = 0; i < x.size; ++i) {
+        const Scalar c = exact(at(i));
+        out[i] = accumulate ? out[i] + c : c;
+      }
+      return;
+    }
+    // Uniform bins, a block at a time. A packet min/max scan of the block (in L1 by then) says
+    // whether every value is finite and inside [lo, hi); such a block is scored by table loads,
+    // with bin indices computed as counting computes them (in a loop the compiler vectorises).
+    // A block with any other value takes the exact path, which gives the same contribution
+    // wherever both apply (for v in [lo, hi) it is table[min(int(t), last)]).
+    const auto last = static_cast<std::int32_t>(bins() - 1);
+    constexpr Index block = 256;
+    std::array<std::int32_t, block> b{};
+    for (Index start = 0; start < x.size; start += block) {
+      const Index m = std::min(block, x.size - start);
+      const detail::MinMax<Scalar> range =
+          detail::scan_min_max(detail::ColumnView<Scalar>{x.data + start * x.stride, m, x.stride});
+      Scalar* o = out + start;
+      if (range.finite && range.lo >= lo && range.hi < hi) {
+        for (Index i = 0; i < m; ++i)
+          b[static_cast<std::size_t>(i)] =
+              std::min(static_cast<std::int32_t>((at(start + i) - lo) * inv), last);
+        if (accumulate) {
+          for (Index i = 0; i < m; ++i) o[i] += table[b[static_cast<std::size_t>(i)]];
+        } else {
+          for (Index i = 0; i < m; ++i) o[i] = table[b[static_cast<std::size_t>(i)]];
+        }
+      } else {
+        for (Index i = 0; i < m; ++i) {
+          const Scalar c = exact(at(start + i));
+          o[i] = accumulate ? o[i] + c : c;
+        }
+      }
     }
   });
 }
