@@ -1,6 +1,6 @@
 // Proves the per-frame screening path allocates nothing after warm-up, for every strategy, in
-// single and iterated mode, with frames of varying size (the counting operator new lives in
-// tests/unit/alloc_counter.cpp).
+// single and iterated mode, with frames of varying size (allocations, operator new and malloc
+// alike, are counted in tests/unit/alloc_counter.cpp).
 
 #include <catch2/catch.hpp>
 
