@@ -2,6 +2,7 @@
 // tests/data/hbos_pyod (six ODDS sets x four parameter tags), input layouts, float vs double,
 // bad input, and the two PyOD defects docs/pyod_compat.md quotes.
 
+#include <hbos/model.hpp>
 #include <hbos/pyod.hpp>
 
 #include <algorithm>
@@ -787,6 +788,40 @@ TEST_CASE("pyod defect 2: alpha makes the scores depend on each feature's units"
     discordant += ((a[i] - a[i + 1]) * (b[i] - b[i + 1]) < 0.0) ? 1 : 0;
   }
   CHECK(discordant == 242);
+}
+
+TEST_CASE("the default mode does not depend on the units (docs/pyod_compat.md, cardio table)",
+          "[pyod][defect][docs]") {
+  // The "default mode" and "10 plain bins, our convention" columns of the cardio table in
+  // docs/pyod_compat.md, recomputed here (the PyOD-mode column is checked above). The model is
+  // scale-free; what moves the 4th decimal is only the rounding of values that sit exactly on
+  // bin edges under a decimal rescaling.
+  const std::string dir = kDataDir + "cardio/";
+  const Eigen::MatrixXd X = read_csv_matrix(dir + "X.csv");
+  const Eigen::VectorXd y = read_vector(dir + "y.csv");
+  hbos::HbosParams plain10;
+  plain10.feature.binning.bins = 10;
+  plain10.feature.binning.shifts = 1;
+  auto auc_of = [&](const Eigen::MatrixXd& data, const hbos::HbosParams& params) {
+    return roc_auc(hbos::Hbosd::fit(data, params).score(data), y);
+  };
+  Eigen::MatrixXd one_feature = X;
+  one_feature.col(9) *= 1000.0;
+  const std::vector<std::pair<std::string, Eigen::MatrixXd>> variants = {
+      {"as distributed", X},
+      {"x 1000", X * 1000.0},
+      {"/ 1000", X / 1000.0},
+      {"feature 9 x 1000", one_feature},
+      {"x (1 + 1e-12)", X * (1.0 + 1e-12)}};
+  const double default_auc[] = {0.9205, 0.9208, 0.9208, 0.9205, 0.9208};
+  const double plain_auc[] = {0.8730, 0.8730, 0.8733, 0.8730, 0.8740};
+  for (std::size_t v = 0; v < variants.size(); ++v) {
+    INFO(variants[v].first);
+    CHECK(auc_of(variants[v].second, hbos::HbosParams{}) == Approx(default_auc[v]).margin(5e-5));
+    CHECK(auc_of(variants[v].second, plain10) == Approx(plain_auc[v]).margin(5e-5));
+  }
+  // Powers of two are exact: bit-identical scores.
+  CHECK(hbos::Hbosd::fit(X * 1024.0).score(X * 1024.0) == hbos::Hbosd::fit(X).score(X));
 }
 
 TEST_CASE("pyod: the migration snippet of docs/pyod_compat.md", "[pyod][docs]") {
