@@ -47,6 +47,8 @@
 #include "hbos/model.hpp"
 #include "hbos/threshold.hpp"
 
+#include "bench_specs.hpp"
+
 namespace {
 
 using Index = Eigen::Index;
@@ -104,37 +106,20 @@ const char* name_of(Op op) {
   return "?";
 }
 
-template <class Scalar>
-const char* scalar_name() {
-  return sizeof(Scalar) == sizeof(float) ? "float" : "double";
-}
+using hbos_bench::scalar_name;
 
 hbos::HbosParams params_of(Spec spec) {
-  hbos::HbosParams params;
-  hbos::Binning& binning = params.feature.binning;
   switch (spec) {
     case Spec::Static10:
-      binning.method = hbos::BinningMethod::EqualWidth;
-      binning.rule = hbos::BinCountRule::Fixed;
-      binning.bins = 10;
-      binning.shifts = 1;
-      break;
+      return hbos_bench::static_bins(10);
     case Spec::Default:
-      params.feature = hbos::default_feature();
-      break;
+      return hbos::HbosParams{};  // hbos::default_feature() for every feature
     case Spec::Dynamic10:
-      binning.method = hbos::BinningMethod::EqualFrequency;
-      binning.rule = hbos::BinCountRule::Fixed;
-      binning.bins = 10;
-      binning.shifts = 1;
-      break;
+      return hbos_bench::equal_frequency_bins(10);
     case Spec::Auto:
-      binning.method = hbos::BinningMethod::EqualWidth;
-      binning.rule = hbos::BinCountRule::BirgeRozenblac;
-      binning.shifts = 1;
-      break;
+      return hbos_bench::birge_rozenblac_bins();
   }
-  return params;
+  return {};
 }
 
 template <class Scalar>

@@ -35,6 +35,8 @@
 #include "hbos/threshold.hpp"
 #include "hbos/workspace.hpp"
 
+#include "bench_specs.hpp"
+
 namespace {
 
 using Index = Eigen::Index;
@@ -69,26 +71,15 @@ std::vector<Matrix<Scalar>> make_frames(Data data, Index n, Index d) {
 }
 
 hbos::HbosParams params_of(Spec spec) {
-  hbos::HbosParams params;
-  hbos::Binning& binning = params.feature.binning;
   switch (spec) {
     case Spec::Static10:
-      binning.method = hbos::BinningMethod::EqualWidth;
-      binning.rule = hbos::BinCountRule::Fixed;
-      binning.bins = 10;
-      binning.shifts = 1;
-      break;
+      return hbos_bench::static_bins(10);
     case Spec::Default:
-      params.feature = hbos::default_feature();
-      break;
+      return hbos::HbosParams{};  // hbos::default_feature() for every feature
     case Spec::Fixed05:
-      binning.method = hbos::BinningMethod::FixedWidth;
-      binning.width = 0.5;  // [px]
-      binning.origin = 0.0;
-      binning.shifts = 1;
-      break;
+      return hbos_bench::fixed_width_bins(0.5);  // [px]
   }
-  return params;
+  return {};
 }
 
 template <class Scalar>
