@@ -7,7 +7,7 @@
 
 #include <benchmark/benchmark.h>
 
-#include <hbos/reprojection.hpp>
+#include <hbos/screening.hpp>
 
 #include <map>
 #include <string>

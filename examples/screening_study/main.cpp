@@ -7,7 +7,7 @@
 //
 //   screening_study [--seeds N] [--matches N] [--noise PX] [--out-dir DIR] [--quick]
 
-#include <hbos/reprojection.hpp>
+#include <hbos/screening.hpp>
 
 #include <cstdio>
 #include <cstdlib>

@@ -15,8 +15,8 @@
 ///
 /// Scott and Freedman–Diaconis fall back to Sturges when their width is zero (constant or
 /// heavily tied data). Birgé–Rozenblac counts its penalty once per candidate b, as published
-/// (PyOD subtracts it b times: that variant lives in pyod.hpp). Its search stops at floor(sqrt(n))
-/// and costs O(n) in total (detail::EdgeCounter).
+/// (PyOD subtracts it b times: that variant lives in hbos/pyod/model.hpp). Its search stops at
+/// floor(sqrt(n)) and costs O(n) in total (detail::EdgeCounter).
 
 #include <Eigen/Core>
 #include <algorithm>
@@ -26,6 +26,7 @@
 #include <utility>
 #include <vector>
 
+#include "hbos/detail/column_view.hpp"
 #include "hbos/error.hpp"
 
 namespace hbos {
@@ -317,6 +318,155 @@ template <class Scalar>
     }
   }
   return best_b;
+}
+
+/// Where one feature's bins sit: what edge placement decides and counting and scoring read.
+template <class Scalar>
+struct EdgeLayout {
+  std::vector<Scalar> edges;  ///< bins + 1 ascending edges; bin k is [edges[k], edges[k+1])
+  Scalar lo = 0, hi = 0;      ///< the fitted range (the period for a periodic feature)
+  Scalar inv_width = 0;       ///< uniform bins only (0 for a constant feature)
+  Scalar period = 0;          ///< periodic only
+};
+
+/// The bin-count rules' reusable buffers (Birgé–Rozenblac's bucketed values and cells).
+struct RuleScratch {
+  std::vector<double> values;
+  std::vector<std::uint32_t> cells;
+};
+
+/// The bin count `binning.rule` gives column `x` over [lo, hi].
+template <class Scalar>
+Eigen::Index rule_bins(const ColumnView<Scalar>& x, const Binning& binning, Scalar lo, Scalar hi,
+                       std::vector<Scalar>& scratch, RuleScratch& rule_scratch) {
+  const Eigen::Index n = x.size;
+  const double range = static_cast<double>(hi) - static_cast<double>(lo);
+  const double dn = static_cast<double>(n);
+  switch (binning.rule) {
+    case BinCountRule::Fixed:
+      return binning.bins;
+    case BinCountRule::Sqrt:
+      return clamp_bins(std::ceil(std::sqrt(dn)), binning.max_bins);
+    case BinCountRule::Sturges:
+      return clamp_bins(static_cast<double>(sturges_bins(n)), binning.max_bins);
+    case BinCountRule::Scott: {
+      double mean = 0.0;
+      for (Eigen::Index i = 0; i < n; ++i) mean += static_cast<double>(x[i]);
+      mean /= dn;
+      double ss = 0.0;
+      for (Eigen::Index i = 0; i < n; ++i) {
+        const double d = static_cast<double>(x[i]) - mean;
+        ss += d * d;
+      }
+      const double h =
+          std::cbrt(24.0 * std::sqrt(3.14159265358979323846) / dn) * std::sqrt(ss / dn);
+      return bins_from_width(range, h, n, binning.max_bins);
+    }
+    case BinCountRule::FreedmanDiaconis: {
+      // numpy's linear-interpolation quartiles by selection (O(n)) on a copy.
+      if (x.data != scratch.data()) {
+        scratch.resize(static_cast<std::size_t>(n));
+        for (Eigen::Index i = 0; i < n; ++i) scratch[static_cast<std::size_t>(i)] = x[i];
+      }
+      auto quantile = [&](double q) {
+        const double pos = q * (dn - 1.0);
+        const auto i = static_cast<std::ptrdiff_t>(std::floor(pos));
+        const double g = pos - static_cast<double>(i);
+        std::nth_element(scratch.begin(), scratch.begin() + i, scratch.begin() + n);
+        const double a = static_cast<double>(scratch[static_cast<std::size_t>(i)]);
+        const double b = i + 1 < n ? static_cast<double>(*std::min_element(scratch.begin() + i + 1,
+                                                                           scratch.begin() + n))
+                                   : a;
+        return a + (b - a) * g;
+      };
+      const double q1 = quantile(0.25);
+      const double iqr = quantile(0.75) - q1;
+      return bins_from_width(range, 2.0 * iqr / std::cbrt(dn), n, binning.max_bins);
+    }
+    case BinCountRule::BirgeRozenblac:
+      return birge_rozenblac_bins(x.data, n, x.stride, lo, hi, binning.max_bins,
+                                  rule_scratch.values, rule_scratch.cells);
+  }
+  return binning.bins;
+}
+
+/// Uniform bins (equal or fixed width, periodic or not) for `x`, `shifts` fine bins per coarse
+/// bin, into `layout`. \throws InvalidArgument when the bins exceed `max_bins`.
+template <class Scalar>
+void place_uniform_edges(const ColumnView<Scalar>& x, const FeatureSpec& spec, Eigen::Index shifts,
+                         std::vector<Scalar>& scratch, RuleScratch& rule_scratch,
+                         Eigen::Index feature, EdgeLayout<Scalar>& layout) {
+  const Binning& binning = spec.binning;
+  Eigen::Index k = 1;
+  Scalar width = 0;
+  if (spec.periodic) {
+    layout.lo = static_cast<Scalar>(spec.period_start);
+    layout.period = static_cast<Scalar>(spec.period);
+    layout.hi = layout.lo + layout.period;
+    if (binning.method == BinningMethod::FixedWidth) {
+      // The period must hold a whole number of bins: the width is rounded to the nearest divisor.
+      k = clamp_bins(std::round(spec.period / binning.width), binning.max_bins);
+    } else {
+      k = rule_bins(x, binning, Scalar(0), layout.period, scratch, rule_scratch);
+    }
+    width = layout.period / static_cast<Scalar>(k);
+  } else {
+    const auto [lo, hi] = finite_min_max(x, feature);
+    if (binning.method == BinningMethod::FixedWidth) {
+      const double first = std::floor((static_cast<double>(lo) - binning.origin) / binning.width);
+      const double last =
+          std::floor((static_cast<double>(hi) - binning.origin) / binning.width) + 1.0;
+      require(last - first <= static_cast<double>(binning.max_bins) / static_cast<double>(shifts),
+              "feature ", feature, ": fixed bin width ", binning.width, " over the range [", lo,
+              ", ", hi, "] needs ", last - first, " bins, more than max_bins = ", binning.max_bins);
+      k = static_cast<Eigen::Index>(last - first);
+      width = static_cast<Scalar>(binning.width);
+      layout.lo = static_cast<Scalar>(binning.origin + first * binning.width);
+      layout.hi = static_cast<Scalar>(binning.origin + last * binning.width);
+    } else {
+      layout.lo = lo;
+      layout.hi = hi;
+      if (layout.hi > layout.lo) {
+        k = rule_bins(x, binning, layout.lo, layout.hi, scratch, rule_scratch);
+        width = (layout.hi - layout.lo) / static_cast<Scalar>(k);
+      }
+    }
+  }
+  // Averaged shifted histograms count on a grid m times finer than the coarse bins.
+  if (width > Scalar(0) && shifts > 1) {
+    require(k * shifts <= binning.max_bins, "feature ", feature, ": ", k, " bins x ", shifts,
+            " shifts exceed max_bins = ", binning.max_bins);
+    k *= shifts;
+    width /= static_cast<Scalar>(shifts);
+  }
+  layout.inv_width = width > Scalar(0) ? Scalar(1) / width : Scalar(0);
+  layout.edges.resize(static_cast<std::size_t>(k + 1));
+  for (Eigen::Index j = 0; j < k; ++j)
+    layout.edges[static_cast<std::size_t>(j)] = layout.lo + static_cast<Scalar>(j) * width;
+  layout.edges.back() = layout.hi;
+}
+
+template <class Scalar>
+void place_equal_frequency_edges(const Scalar* sorted, Eigen::Index n, Eigen::Index k,
+                                 EdgeLayout<Scalar>& layout) {
+  // Goldstein & Dengel's dynamic bins: about n/k sorted values per bin; a boundary never splits
+  // a run of equal values, so ties may merge bins. Edges sit midway between the last value of a
+  // bin and the first of the next, so every bin has positive width when values differ.
+  layout.lo = sorted[0];
+  layout.hi = sorted[n - 1];
+  layout.edges.clear();
+  layout.edges.push_back(layout.lo);
+  Eigen::Index previous = 0;
+  for (Eigen::Index b = 1; b < k; ++b) {
+    auto p = static_cast<Eigen::Index>(
+        std::llround(static_cast<double>(b) * static_cast<double>(n) / static_cast<double>(k)));
+    if (p <= previous) continue;
+    while (p < n && sorted[p] == sorted[p - 1]) ++p;
+    if (p >= n) break;
+    layout.edges.push_back(sorted[p - 1] + (sorted[p] - sorted[p - 1]) / Scalar(2));
+    previous = p;
+  }
+  layout.edges.push_back(layout.hi);
 }
 
 }  // namespace detail

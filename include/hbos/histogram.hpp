@@ -9,7 +9,7 @@
 ///
 /// which is 0 in the modal bin and grows as the bin gets sparser. Heights are normalised by the
 /// feature's own maximum, so every feature weighs the same and shifting or rescaling a feature
-/// changes nothing (PyOD's `log2(density + alpha)` lacks both properties; see pyod.hpp).
+/// changes nothing (PyOD's `log2(density + alpha)` lacks both properties; see hbos/pyod/model.hpp).
 ///
 /// Rules that make every score finite and documented:
 /// - **Empty bins** score as if they held `empty_bin_count` samples (default 0.5, less than any
@@ -66,116 +66,6 @@ inline void validate(const ScoringOptions& o) {
           "range_tolerance must be finite and >= 0, got ", o.range_tolerance);
 }
 
-/// A column as a strided pointer: what every kernel reads.
-template <class Scalar>
-struct ColumnView {
-  const Scalar* data = nullptr;
-  Eigen::Index size = 0;
-  Eigen::Index stride = 1;
-  [[nodiscard]] Scalar operator[](Eigen::Index i) const { return data[i * stride]; }
-};
-
-/// A view of `column`: in place when the expression has direct access (matrices, maps, blocks),
-/// otherwise evaluated into `storage`.
-template <class Scalar, class Column>
-ColumnView<Scalar> view_of(const Column& column, std::vector<Scalar>& storage) {
-  if constexpr ((Column::Flags & Eigen::DirectAccessBit) != 0) {
-    return {column.data(), column.size(), column.innerStride()};
-  } else {
-    storage.resize(static_cast<std::size_t>(column.size()));
-    for (Eigen::Index i = 0; i < column.size(); ++i)
-      storage[static_cast<std::size_t>(i)] = column.coeff(i);
-    return {storage.data(), column.size(), 1};
-  }
-}
-
-/// Throws naming the first non-finite value of feature `feature`.
-template <class Scalar>
-[[noreturn]] void throw_not_finite(const ColumnView<Scalar>& x, Eigen::Index feature) {
-  for (Eigen::Index i = 0; i < x.size; ++i)
-    require(std::isfinite(x[i]), "X(", i, ", ", feature, ") is not finite (", x[i], ")");
-  throw InvalidArgument(concat("feature ", feature, " has a non-finite value"));
-}
-
-/// Calls `body(value_at)` with an accessor specialised for contiguous columns, so the common
-/// unit-stride case compiles to plain (vectorisable) pointer loops.
-template <class Scalar, class Body>
-void with_access(const ColumnView<Scalar>& x, Body&& body) {
-  if (x.stride == 1) {
-    const Scalar* p = x.data;
-    body([p](Eigen::Index i) { return p[i]; });
-  } else {
-    const Scalar* p = x.data;
-    const Eigen::Index stride = x.stride;
-    body([p, stride](Eigen::Index i) { return p[i * stride]; });
-  }
-}
-
-/// min and max of a column in one pass, and whether every value is finite.
-template <class Scalar>
-struct MinMax {
-  Scalar lo, hi;
-  bool finite;
-};
-
-/// One pass over `x` (at least one value): its min, its max and whether all values are finite.
-template <class Scalar>
-MinMax<Scalar> scan_min_max(const ColumnView<Scalar>& x) {
-  // v * 0 is 0 for finite v and NaN otherwise, so one accumulated sum checks finiteness in the
-  // same pass. GCC does not vectorise min/max reductions on its own; on contiguous data Eigen's
-  // packet primitives do it explicitly (SSE2 and up). Four packets per step, each with its own
-  // min and max accumulator: with fewer, the loop waits on the latency of the min/max chains
-  // (measured: 2x slower than a streaming sum at 1e6 rows) instead of on memory.
-  Scalar lo = x[0], hi = x[0], check = 0;
-  Eigen::Index i = 0;
-  if (x.stride == 1) {
-    using Packet = typename Eigen::internal::packet_traits<Scalar>::type;
-    constexpr Eigen::Index P = Eigen::internal::packet_traits<Scalar>::size;
-    if constexpr (P > 1) {
-      namespace in = Eigen::internal;
-      const Scalar* p = x.data;
-      Packet lo0 = in::pset1<Packet>(lo), lo1 = lo0, lo2 = lo0, lo3 = lo0;
-      Packet hi0 = lo0, hi1 = lo0, hi2 = lo0, hi3 = lo0;
-      const Packet zero = in::pset1<Packet>(Scalar(0));
-      Packet c0 = zero, c1 = zero;
-      for (; i + 4 * P <= x.size; i += 4 * P) {
-        const Packet a = in::ploadu<Packet>(p + i);
-        const Packet b = in::ploadu<Packet>(p + i + P);
-        const Packet c = in::ploadu<Packet>(p + i + 2 * P);
-        const Packet d = in::ploadu<Packet>(p + i + 3 * P);
-        lo0 = in::pmin(lo0, a);
-        lo1 = in::pmin(lo1, b);
-        lo2 = in::pmin(lo2, c);
-        lo3 = in::pmin(lo3, d);
-        hi0 = in::pmax(hi0, a);
-        hi1 = in::pmax(hi1, b);
-        hi2 = in::pmax(hi2, c);
-        hi3 = in::pmax(hi3, d);
-        c0 = in::padd(c0, in::padd(in::pmul(a, zero), in::pmul(b, zero)));
-        c1 = in::padd(c1, in::padd(in::pmul(c, zero), in::pmul(d, zero)));
-      }
-      lo = in::predux_min(in::pmin(in::pmin(lo0, lo1), in::pmin(lo2, lo3)));
-      hi = in::predux_max(in::pmax(in::pmax(hi0, hi1), in::pmax(hi2, hi3)));
-      check = in::predux(in::padd(c0, c1));
-    }
-  }
-  for (; i < x.size; ++i) {
-    const Scalar v = x[i];
-    lo = v < lo ? v : lo;
-    hi = v > hi ? v : hi;
-    check += v * Scalar(0);
-  }
-  return {lo, hi, check == Scalar(0)};
-}
-
-/// min and max of a column in one pass, throwing on any NaN or infinity.
-template <class Scalar>
-std::pair<Scalar, Scalar> finite_min_max(const ColumnView<Scalar>& x, Eigen::Index feature) {
-  const MinMax<Scalar> r = scan_min_max(x);
-  if (!r.finite) throw_not_finite(x, feature);
-  return {r.lo, r.hi};
-}
-
 }  // namespace detail
 
 /// A fitted one-feature histogram. See the file comment for the maths and the rules.
@@ -189,7 +79,7 @@ class Histogram {
   /// Number of bins, >= 1 once fitted (fine bins when shifts > 1).
   [[nodiscard]] Index bins() const { return static_cast<Index>(counts_.size()); }
   /// bins() + 1 edges, ascending; bin k is [edges[k], edges[k+1]).
-  [[nodiscard]] const std::vector<Scalar>& edges() const { return edges_; }
+  [[nodiscard]] const std::vector<Scalar>& edges() const { return layout_.edges; }
   /// Training samples counted in each bin.
   [[nodiscard]] const std::vector<Index>& counts() const { return counts_; }
   /// The contribution of a value in each bin, after the tail rule (>= 0, 0 in the modal bin).
@@ -199,8 +89,8 @@ class Histogram {
   [[nodiscard]] bool periodic() const { return periodic_; }
   [[nodiscard]] Tail tail() const { return tail_; }
   /// The fitted range [lower(), upper()] (the period for a periodic feature).
-  [[nodiscard]] Scalar lower() const { return lo_; }
-  [[nodiscard]] Scalar upper() const { return hi_; }
+  [[nodiscard]] Scalar lower() const { return layout_.lo; }
+  [[nodiscard]] Scalar upper() const { return layout_.hi; }
   /// Index of the modal (densest) bin; the first one on ties.
   [[nodiscard]] Index mode() const { return mode_; }
 
@@ -208,14 +98,14 @@ class Histogram {
   /// [lower(), upper()] first, so out-of-range values map to the edge bins.
   [[nodiscard]] Index bin_of(Scalar x) const {
     if (periodic_) return uniform_bin(wrap(x));
-    return in_range_bin(std::clamp(x, lo_, hi_));
+    return in_range_bin(std::clamp(x, layout_.lo, layout_.hi));
   }
 
   /// The contribution of value `x` to a sample's score (see the file comment). `x` must be finite.
   [[nodiscard]] Scalar contribution(Scalar x) const {
     if (periodic_) return contribution_[static_cast<std::size_t>(uniform_bin(wrap(x)))];
-    if (x < lo_) return x >= tolerance_lo_ ? contribution_.front() : below_;
-    if (x > hi_) return x <= tolerance_hi_ ? contribution_.back() : above_;
+    if (x < layout_.lo) return x >= tolerance_lo_ ? contribution_.front() : below_;
+    if (x > layout_.hi) return x <= tolerance_hi_ ? contribution_.back() : above_;
     return contribution_[static_cast<std::size_t>(in_range_bin(x))];
   }
 
@@ -226,16 +116,16 @@ class Histogram {
 
   /// Pre-grows storage for up to `bins` bins, so refits up to that size do not allocate.
   void reserve(Index bins) {
-    edges_.reserve(static_cast<std::size_t>(bins + 1));
+    layout_.edges.reserve(static_cast<std::size_t>(bins + 1));
     counts_.reserve(static_cast<std::size_t>(bins));
     contribution_.reserve(static_cast<std::size_t>(bins));
-    sub_counts_.reserve(static_cast<std::size_t>(4 * bins));
+    rule_scratch_.cells.reserve(static_cast<std::size_t>(4 * bins));
   }
 
   /// Frees the buffers only fitting needs (a fitted model keeps just what scoring reads).
   void release_fit_buffers() {
-    std::vector<std::uint32_t>().swap(sub_counts_);
-    std::vector<double>().swap(work_);
+    std::vector<std::uint32_t>().swap(rule_scratch_.cells);
+    std::vector<double>().swap(rule_scratch_.values);
   }
 
   /// Re-fits this histogram to `column` in place, reusing its storage and `scratch`: no heap
@@ -263,40 +153,31 @@ class Histogram {
                   BinIndex* bin_index);
 
   [[nodiscard]] Scalar wrap(Scalar x) const {
-    Scalar t = x - lo_;
-    if (t < Scalar(0) || t >= period_) t -= period_ * std::floor(t / period_);
+    Scalar t = x - layout_.lo;
+    if (t < Scalar(0) || t >= layout_.period) t -= layout_.period * std::floor(t / layout_.period);
     return t;  // in [0, period] (rounding may give exactly period: clamped to the last bin)
   }
   /// Uniform bins: offset t = x - lower() in [0, upper() - lower()].
   [[nodiscard]] Index uniform_bin(Scalar t) const {
-    const auto k = static_cast<Index>(t * inv_width_);
+    const auto k = static_cast<Index>(t * layout_.inv_width);
     return std::min(k, bins() - 1);
   }
   [[nodiscard]] Index in_range_bin(Scalar x) const {
-    if (uniform_) return uniform_bin(x - lo_);
+    if (uniform_) return uniform_bin(x - layout_.lo);
     // Irregular bins: the number of interior edges <= x.
-    const auto first = edges_.begin() + 1;
-    const auto last = edges_.end() - 1;
+    const auto first = layout_.edges.begin() + 1;
+    const auto last = layout_.edges.end() - 1;
     return static_cast<Index>(std::upper_bound(first, last, x) - first);
   }
 
-  Index rule_bins(const detail::ColumnView<Scalar>& x, const Binning& binning, Scalar lo, Scalar hi,
-                  std::vector<Scalar>& scratch);
-  void place_uniform_edges(const detail::ColumnView<Scalar>& x, const FeatureSpec& spec,
-                           std::vector<Scalar>& scratch, Index feature);
-  void place_equal_frequency_edges(const Scalar* sorted, Index n, Index k);
   template <class BinIndex = std::uint32_t>
   void count(const detail::ColumnView<Scalar>& x, BinIndex* bin_index = nullptr);
   void score_bins(Index n, const ScoringOptions& options);
 
-  std::vector<Scalar> edges_;
+  detail::EdgeLayout<Scalar> layout_;
   std::vector<Index> counts_;
   std::vector<Scalar> contribution_;
-  std::vector<std::uint32_t> sub_counts_;  // fitting only: interleaved counting, BR cells
-  std::vector<double> work_;               // fitting only: Birgé–Rozenblac's bucketed values
-  Scalar lo_ = 0, hi_ = 0;
-  Scalar inv_width_ = 0;  // uniform bins only (0 for a constant feature)
-  Scalar period_ = 0;     // periodic only
+  detail::RuleScratch rule_scratch_;  // fitting only: interleaved counting, the bin-count rules
   Scalar tolerance_lo_ = 0, tolerance_hi_ = 0;
   Scalar below_ = 0, above_ = 0;  // contributions beyond the tolerance band
   Scalar cap_ = 0;
@@ -316,7 +197,7 @@ void Histogram<Scalar>::contributions_into(const detail::ColumnView<Scalar>& x, 
                                            bool accumulate, Index feature) const {
   // Local copies: the compiler cannot prove that stores to `out` leave the members unchanged and
   // would otherwise reload them after every store.
-  const Scalar lo = lo_, hi = hi_, inv = inv_width_;
+  const Scalar lo = layout_.lo, hi = layout_.hi, inv = layout_.inv_width;
   const Scalar* table = contribution_.data();
   const bool fast =
       uniform_ && inv > Scalar(0) && bins() <= std::numeric_limits<std::int32_t>::max();
@@ -366,142 +247,10 @@ void Histogram<Scalar>::contributions_into(const detail::ColumnView<Scalar>& x, 
 }
 
 template <class Scalar>
-Eigen::Index Histogram<Scalar>::rule_bins(const detail::ColumnView<Scalar>& x,
-                                          const Binning& binning, Scalar lo, Scalar hi,
-                                          std::vector<Scalar>& scratch) {
-  const Index n = x.size;
-  const double range = static_cast<double>(hi) - static_cast<double>(lo);
-  const double dn = static_cast<double>(n);
-  switch (binning.rule) {
-    case BinCountRule::Fixed:
-      return binning.bins;
-    case BinCountRule::Sqrt:
-      return detail::clamp_bins(std::ceil(std::sqrt(dn)), binning.max_bins);
-    case BinCountRule::Sturges:
-      return detail::clamp_bins(static_cast<double>(detail::sturges_bins(n)), binning.max_bins);
-    case BinCountRule::Scott: {
-      double mean = 0.0;
-      for (Index i = 0; i < n; ++i) mean += static_cast<double>(x[i]);
-      mean /= dn;
-      double ss = 0.0;
-      for (Index i = 0; i < n; ++i) {
-        const double d = static_cast<double>(x[i]) - mean;
-        ss += d * d;
-      }
-      const double h =
-          std::cbrt(24.0 * std::sqrt(3.14159265358979323846) / dn) * std::sqrt(ss / dn);
-      return detail::bins_from_width(range, h, n, binning.max_bins);
-    }
-    case BinCountRule::FreedmanDiaconis: {
-      // numpy's linear-interpolation quartiles by selection (O(n)) on a copy.
-      if (x.data != scratch.data()) {
-        scratch.resize(static_cast<std::size_t>(n));
-        for (Index i = 0; i < n; ++i) scratch[static_cast<std::size_t>(i)] = x[i];
-      }
-      auto quantile = [&](double q) {
-        const double pos = q * (dn - 1.0);
-        const auto i = static_cast<std::ptrdiff_t>(std::floor(pos));
-        const double g = pos - static_cast<double>(i);
-        std::nth_element(scratch.begin(), scratch.begin() + i, scratch.begin() + n);
-        const double a = static_cast<double>(scratch[static_cast<std::size_t>(i)]);
-        const double b = i + 1 < n ? static_cast<double>(*std::min_element(scratch.begin() + i + 1,
-                                                                           scratch.begin() + n))
-                                   : a;
-        return a + (b - a) * g;
-      };
-      const double q1 = quantile(0.25);
-      const double iqr = quantile(0.75) - q1;
-      return detail::bins_from_width(range, 2.0 * iqr / std::cbrt(dn), n, binning.max_bins);
-    }
-    case BinCountRule::BirgeRozenblac:
-      return detail::birge_rozenblac_bins(x.data, n, x.stride, lo, hi, binning.max_bins, work_,
-                                          sub_counts_);
-  }
-  return binning.bins;
-}
-
-template <class Scalar>
-void Histogram<Scalar>::place_uniform_edges(const detail::ColumnView<Scalar>& x,
-                                            const FeatureSpec& spec, std::vector<Scalar>& scratch,
-                                            Index feature) {
-  const Binning& binning = spec.binning;
-  Index k = 1;
-  Scalar width = 0;
-  if (spec.periodic) {
-    lo_ = static_cast<Scalar>(spec.period_start);
-    period_ = static_cast<Scalar>(spec.period);
-    hi_ = lo_ + period_;
-    if (binning.method == BinningMethod::FixedWidth) {
-      // The period must hold a whole number of bins: the width is rounded to the nearest divisor.
-      k = detail::clamp_bins(std::round(spec.period / binning.width), binning.max_bins);
-    } else {
-      k = rule_bins(x, binning, Scalar(0), period_, scratch);
-    }
-    width = period_ / static_cast<Scalar>(k);
-  } else {
-    const auto [lo, hi] = detail::finite_min_max(x, feature);
-    if (binning.method == BinningMethod::FixedWidth) {
-      const double first = std::floor((static_cast<double>(lo) - binning.origin) / binning.width);
-      const double last =
-          std::floor((static_cast<double>(hi) - binning.origin) / binning.width) + 1.0;
-      detail::require(
-          last - first <= static_cast<double>(binning.max_bins) / static_cast<double>(shifts_),
-          "feature ", feature, ": fixed bin width ", binning.width, " over the range [", lo, ", ",
-          hi, "] needs ", last - first, " bins, more than max_bins = ", binning.max_bins);
-      k = static_cast<Index>(last - first);
-      width = static_cast<Scalar>(binning.width);
-      lo_ = static_cast<Scalar>(binning.origin + first * binning.width);
-      hi_ = static_cast<Scalar>(binning.origin + last * binning.width);
-    } else {
-      lo_ = lo;
-      hi_ = hi;
-      if (hi_ > lo_) {
-        k = rule_bins(x, binning, lo_, hi_, scratch);
-        width = (hi_ - lo_) / static_cast<Scalar>(k);
-      }
-    }
-  }
-  // Averaged shifted histograms count on a grid m times finer than the coarse bins.
-  if (width > Scalar(0) && shifts_ > 1) {
-    detail::require(k * shifts_ <= binning.max_bins, "feature ", feature, ": ", k, " bins x ",
-                    shifts_, " shifts exceed max_bins = ", binning.max_bins);
-    k *= shifts_;
-    width /= static_cast<Scalar>(shifts_);
-  }
-  inv_width_ = width > Scalar(0) ? Scalar(1) / width : Scalar(0);
-  edges_.resize(static_cast<std::size_t>(k + 1));
-  for (Index j = 0; j < k; ++j)
-    edges_[static_cast<std::size_t>(j)] = lo_ + static_cast<Scalar>(j) * width;
-  edges_.back() = hi_;
-}
-
-template <class Scalar>
-void Histogram<Scalar>::place_equal_frequency_edges(const Scalar* sorted, Index n, Index k) {
-  // Goldstein & Dengel's dynamic bins: about n/k sorted values per bin; a boundary never splits
-  // a run of equal values, so ties may merge bins. Edges sit midway between the last value of a
-  // bin and the first of the next, so every bin has positive width when values differ.
-  lo_ = sorted[0];
-  hi_ = sorted[n - 1];
-  edges_.clear();
-  edges_.push_back(lo_);
-  Index previous = 0;
-  for (Index b = 1; b < k; ++b) {
-    auto p = static_cast<Index>(
-        std::llround(static_cast<double>(b) * static_cast<double>(n) / static_cast<double>(k)));
-    if (p <= previous) continue;
-    while (p < n && sorted[p] == sorted[p - 1]) ++p;
-    if (p >= n) break;
-    edges_.push_back(sorted[p - 1] + (sorted[p] - sorted[p - 1]) / Scalar(2));
-    previous = p;
-  }
-  edges_.push_back(hi_);
-}
-
-template <class Scalar>
 template <class BinIndex>
 void Histogram<Scalar>::count(const detail::ColumnView<Scalar>& x, BinIndex* bin_index) {
   const Index n = x.size;
-  const auto k = static_cast<std::size_t>(edges_.size() - 1);
+  const auto k = static_cast<std::size_t>(layout_.edges.size() - 1);
   counts_.assign(k, 0);
   if (periodic_) {
     // Periodic values arrive as offsets wrap(x) into the period: exactly what lookup computes.
@@ -509,7 +258,7 @@ void Histogram<Scalar>::count(const detail::ColumnView<Scalar>& x, BinIndex* bin
     return;
   }
   constexpr auto int32_max = static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max());
-  if (!uniform_ || !(inv_width_ > Scalar(0)) || k > int32_max) {
+  if (!uniform_ || !(layout_.inv_width > Scalar(0)) || k > int32_max) {
     for (Index i = 0; i < n; ++i) {
       const auto b = static_cast<std::size_t>(in_range_bin(x[i]));
       ++counts_[b];
@@ -522,9 +271,9 @@ void Histogram<Scalar>::count(const detail::ColumnView<Scalar>& x, BinIndex* bin
   // rounding past it belong to the last bin; the same arithmetic as uniform_bin), and then
   // counted into four interleaved sub-histograms, so that consecutive values in the same bin
   // increment different counters and the increments do not serialise.
-  sub_counts_.assign(4 * k, 0);
-  std::uint32_t* sub = sub_counts_.data();
-  const Scalar lo = lo_, inv = inv_width_;
+  rule_scratch_.cells.assign(4 * k, 0);
+  std::uint32_t* sub = rule_scratch_.cells.data();
+  const Scalar lo = layout_.lo, inv = layout_.inv_width;
   const auto last = static_cast<std::int32_t>(k - 1);
   constexpr Index block = 256;
   std::array<std::int32_t, block> b{};
@@ -559,7 +308,7 @@ template <class Scalar>
 void Histogram<Scalar>::score_bins(Index n, const ScoringOptions& options) {
   const auto k = counts_.size();
   contribution_.resize(k);
-  const bool constant = !periodic_ && !(hi_ > lo_);
+  const bool constant = !periodic_ && !(layout_.hi > layout_.lo);
   if (constant) {
     contribution_[0] = 0;
     cap_ = static_cast<Scalar>(std::log(static_cast<double>(n) / options.empty_bin_count));
@@ -591,7 +340,9 @@ void Histogram<Scalar>::score_bins(Index n, const ScoringOptions& options) {
     // rounding of lo + j * width) keeps heights exactly proportional to mass, and scores exactly
     // invariant under affine maps of the feature.
     auto width_of = [&](std::size_t i) {
-      return uniform_ ? 1.0 : static_cast<double>(edges_[i + 1]) - static_cast<double>(edges_[i]);
+      return uniform_ ? 1.0
+                      : static_cast<double>(layout_.edges[i + 1]) -
+                            static_cast<double>(layout_.edges[i]);
     };
     // Heights h_i = mass_i / width_i, in double; only ratios to h_max matter. An empty
     // neighbourhood counts as `empty_bin_count` samples.
@@ -636,8 +387,8 @@ void Histogram<Scalar>::score_bins(Index n, const ScoringOptions& options) {
 
   // The tolerance counts coarse bins (m fine bins each).
   const auto tol = static_cast<Scalar>(options.range_tolerance * static_cast<double>(shifts_));
-  tolerance_lo_ = lo_ - tol * (edges_[1] - edges_[0]);
-  tolerance_hi_ = hi_ + tol * (edges_[k] - edges_[k - 1]);
+  tolerance_lo_ = layout_.lo - tol * (layout_.edges[1] - layout_.edges[0]);
+  tolerance_hi_ = layout_.hi + tol * (layout_.edges[k] - layout_.edges[k - 1]);
 }
 
 template <class Scalar>
@@ -649,19 +400,19 @@ bool Histogram<Scalar>::refit_view(const detail::ColumnView<Scalar>& x, const Fe
   detail::require(n > 0, "feature ", feature, ": cannot fit a histogram to no samples");
   periodic_ = spec.periodic;
   tail_ = spec.tail;
-  period_ = 0;
+  layout_.period = 0;
   const bool equal_frequency = spec.binning.method == BinningMethod::EqualFrequency;
   shifts_ = equal_frequency ? 1 : spec.binning.shifts;
 
   if (!periodic_ && !equal_frequency) {
     // Equal or fixed width: the caller's column is read in place (min/max, then counting).
     uniform_ = true;
-    place_uniform_edges(x, spec, scratch, feature);
+    detail::place_uniform_edges(x, spec, shifts_, scratch, rule_scratch_, feature, layout_);
     // Freedman–Diaconis reorders `scratch` in place: when `x` lives there, the order of the
     // counted values is no longer the caller's, so no indices are recorded.
     const bool in_order =
         x.data != scratch.data() || spec.binning.rule != BinCountRule::FreedmanDiaconis;
-    const std::size_t last_bin = edges_.size() - 2;  // edges were just placed
+    const std::size_t last_bin = layout_.edges.size() - 2;  // edges were just placed
     const bool representable =
         last_bin <= static_cast<std::size_t>(std::numeric_limits<BinIndex>::max());
     const bool record = in_order && representable && bin_index != nullptr;
@@ -680,21 +431,22 @@ bool Histogram<Scalar>::refit_view(const detail::ColumnView<Scalar>& x, const Fe
   const detail::ColumnView<Scalar> values{scratch.data(), n, 1};
   if (periodic_) {
     uniform_ = true;
-    lo_ = static_cast<Scalar>(spec.period_start);
-    period_ = static_cast<Scalar>(spec.period);
+    layout_.lo = static_cast<Scalar>(spec.period_start);
+    layout_.period = static_cast<Scalar>(spec.period);
     for (auto& v : scratch) v = wrap(v);  // offsets into the period; every rule is shift-invariant
-    place_uniform_edges(values, spec, scratch, feature);
+    detail::place_uniform_edges(values, spec, shifts_, scratch, rule_scratch_, feature, layout_);
   } else {
     uniform_ = false;
-    inv_width_ = 0;
+    layout_.inv_width = 0;
     std::sort(scratch.begin(), scratch.end());
     const Index k = scratch.front() < scratch.back()
-                        ? rule_bins(values, spec.binning, scratch.front(), scratch.back(), scratch)
+                        ? detail::rule_bins(values, spec.binning, scratch.front(), scratch.back(),
+                                            scratch, rule_scratch_)
                         : 1;
     // rule_bins may reorder scratch (Freedman–Diaconis selects in place): sort again if so.
     if (spec.binning.rule == BinCountRule::FreedmanDiaconis)
       std::sort(scratch.begin(), scratch.end());
-    place_equal_frequency_edges(scratch.data(), n, k);
+    detail::place_equal_frequency_edges(scratch.data(), n, k, layout_);
   }
   count(values, static_cast<BinIndex*>(nullptr));
   score_bins(n, options);

@@ -1,10 +1,10 @@
-// Tests of the optional OpenCV adapter (hbos/opencv.hpp): filling Matches from OpenCV types, the
-// mask prior, and filtering matches by a screen's result.
+// Tests of the optional OpenCV adapter (hbos/screening/opencv.hpp): filling Matches from OpenCV
+// types, the mask prior, and filtering matches by a screen's result.
 
 #include <catch2/catch.hpp>
 
-#include <hbos/opencv.hpp>
-#include <hbos/reprojection.hpp>
+#include <hbos/screening.hpp>
+#include <hbos/screening/opencv.hpp>
 
 #include <opencv2/core.hpp>
 #include <opencv2/features2d.hpp>

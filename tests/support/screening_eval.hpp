@@ -4,7 +4,7 @@
 /// tests (tests/unit/test_screen_acceptance.cpp) and the study (examples/screening_study), so both
 /// measure exactly the same thing. Test support, not part of the library.
 
-#include <hbos/reprojection.hpp>
+#include <hbos/screening.hpp>
 
 #include <cstdint>
 #include <string>

@@ -5,7 +5,7 @@
 
 #include <catch2/catch.hpp>
 
-#include <hbos/reprojection.hpp>
+#include <hbos/screening.hpp>
 
 #include <cmath>
 #include <vector>

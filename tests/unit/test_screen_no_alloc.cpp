@@ -4,7 +4,7 @@
 
 #include <catch2/catch.hpp>
 
-#include <hbos/reprojection.hpp>
+#include <hbos/screening.hpp>
 
 #include <vector>
 

@@ -4,7 +4,7 @@
 /// the depth scale. Keypoints are detected on the distorted image and undistorted before any
 /// geometry, as ORB-SLAM2 does; depth images are registered to the (distorted) colour image.
 
-#include <hbos/pinhole.hpp>
+#include <hbos/screening/pinhole.hpp>
 
 #include <opencv2/core.hpp>
 

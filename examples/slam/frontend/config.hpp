@@ -90,7 +90,7 @@ struct ScreenStageConfig {
   Eigen::Index min_inliers = 10;  ///< stop re-fitting below this many survivors
 };
 
-/// Gauss-Newton pose refinement on the survivors (hbos/pose_refinement.hpp).
+/// Gauss-Newton pose refinement on the survivors (hbos/screening/pose_refinement.hpp).
 struct RefinementConfig {
   int max_iterations = 10;     ///< per call (ORB-SLAM2: 10 per round)
   double huber_delta = 2.447;  ///< [px/sigma] sqrt(5.991), ORB-SLAM2's Huber width

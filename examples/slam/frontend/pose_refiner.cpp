@@ -2,7 +2,7 @@
 
 #include <fmt/format.h>
 #include <hbos/error.hpp>
-#include <hbos/pose_refinement.hpp>
+#include <hbos/screening/pose_refinement.hpp>
 
 #include <cmath>
 

@@ -1,14 +1,14 @@
 #pragma once
 /// \file
 /// Stage 5: pose refinement on the matches the screen kept: hbos's Gauss-Newton with a Huber loss
-/// on the whitened reprojection error (hbos/pose_refinement.hpp), the cost ORB-SLAM2's
+/// on the whitened reprojection error (hbos/screening/pose_refinement.hpp), the cost ORB-SLAM2's
 /// PoseOptimization minimises. This file is the front end's only use of that header.
 
 #include "frontend/config.hpp"
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
-#include <hbos/pinhole.hpp>
+#include <hbos/screening/pinhole.hpp>
 
 #include <cstdint>
 #include <vector>

@@ -2,9 +2,9 @@
 
 #include <fmt/format.h>
 #include <hbos/error.hpp>
-#include <hbos/residuals.hpp>
-#include <hbos/screen.hpp>
-#include <hbos/screen_strategies.hpp>
+#include <hbos/screening/residual_field.hpp>
+#include <hbos/screening/screen.hpp>
+#include <hbos/screening/strategies.hpp>
 
 #include <chrono>
 #include <cmath>

@@ -5,7 +5,7 @@
 /// ORB-SLAM2-style rounds: screen -> refine the pose on the survivors -> re-screen.
 ///
 /// This file (and residual_screen.cpp) is the front end's only contact with hbos's screening
-/// headers (screen.hpp, screen_strategies.hpp, residuals.hpp), so a change there touches one place.
+/// headers (hbos/screening/), so a change there touches one place.
 
 #include "frontend/config.hpp"
 #include "frontend/pose_refiner.hpp"

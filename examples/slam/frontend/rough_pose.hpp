@@ -9,7 +9,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
-#include <hbos/pinhole.hpp>
+#include <hbos/screening/pinhole.hpp>
 
 #include <vector>
 

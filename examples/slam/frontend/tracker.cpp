@@ -1,6 +1,6 @@
 #include "frontend/tracker.hpp"
 
-#include <hbos/residuals.hpp>
+#include <hbos/screening/residual_field.hpp>
 
 #include <chrono>
 #include <cstdint>

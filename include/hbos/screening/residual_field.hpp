@@ -1,16 +1,6 @@
 #pragma once
 /// \file
-/// Inputs of reprojection screening and the residual features computed from them.
-///
-/// A match i pairs a **predicted** pixel p_i (a map point or previous-frame point reprojected
-/// with the rough pose) with the **observed** keypoint o_i. Its residual is
-///
-///     r_i = o_i - p_i   [px]
-///
-/// optionally with a third, stereo component `u_right` (ORB-SLAM2's RGB-D/stereo residual
-/// `(u, v, u_right)` where `u_right = u - bf / depth`). Each match may carry the scale sigma_i of
-/// its keypoint (ORB-SLAM: sigma_i = 1.2^octave, so sigma_i^2 = 1.2^(2 octave) is the variance
-/// factor of its level) and a prior flag "on a dynamic mask" (from a detector or segmentation).
+/// The dominant residual field of a frame's matches and the residual features built on it.
 ///
 /// Features the screen derives from the residuals (screen.hpp):
 /// - magnitude m_i = |r_i - c(p_i)| / sigma_i (whitened) or |r_i - c(p_i)| (raw) [px/sigma or px];
@@ -21,169 +11,17 @@
 /// mean shift started at the coordinate-wise median) or affine in the predicted pixel p (it also
 /// absorbs the roll and zoom of the pose error). Subtracting it is what lets a screen run *before*
 /// pose optimisation.
-///
-/// Threading: `Matches` is a plain container; concurrent const access is safe.
 
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
-#include <limits>
 #include <vector>
 
 #include "hbos/error.hpp"
+#include "hbos/screening/matches.hpp"
 
 namespace hbos {
-
-/// ORB-SLAM's scale sigma of a keypoint detected at pyramid `octave`: `scale_factor^octave`.
-[[nodiscard]] inline double sigma_from_octave(int octave, double scale_factor = 1.2) {
-  detail::require(octave >= 0, "octave must be >= 0, got ", octave);
-  detail::require(scale_factor >= 1.0 && std::isfinite(scale_factor),
-                  "scale_factor must be finite and >= 1, got ", scale_factor);
-  return std::pow(scale_factor, octave);
-}
-
-/// The matches of one frame, stored column-wise so a screen reads them without copies.
-/// Reuse one object across frames: `clear()` keeps the capacity, so after the largest frame has
-/// been seen, filling it allocates nothing.
-template <class Scalar>
-class Matches {
-  static_assert(std::is_floating_point_v<Scalar>, "Matches needs float or double");
-
- public:
-  using Index = Eigen::Index;
-  using Vector2 = Eigen::Matrix<Scalar, 2, 1>;
-
-  /// Removes every match, keeping the storage.
-  void clear() noexcept {
-    predicted_x_.clear();
-    predicted_y_.clear();
-    observed_x_.clear();
-    observed_y_.clear();
-    predicted_right_.clear();
-    observed_right_.clear();
-    sigma_.clear();
-    flag_.clear();
-    n_stereo_ = 0;
-  }
-
-  /// Reserves storage for `n` matches.
-  void reserve(Index n) {
-    detail::require(n >= 0, "cannot reserve a negative number of matches, got ", n);
-    const auto k = static_cast<std::size_t>(n);
-    predicted_x_.reserve(k);
-    predicted_y_.reserve(k);
-    observed_x_.reserve(k);
-    observed_y_.reserve(k);
-    predicted_right_.reserve(k);
-    observed_right_.reserve(k);
-    sigma_.reserve(k);
-    flag_.reserve(k);
-  }
-
-  /// Appends a monocular match.
-  /// \param predicted       [px] the reprojected point
-  /// \param observed        [px] the matched keypoint
-  /// \param sigma           the keypoint's scale sigma (see sigma_from_octave), finite, > 0
-  /// \param on_dynamic_mask the prior: the keypoint lies on a dynamic object's mask
-  void add(const Vector2& predicted, const Vector2& observed, Scalar sigma = Scalar(1),
-           bool on_dynamic_mask = false) {
-    const Scalar none = std::numeric_limits<Scalar>::quiet_NaN();
-    push(predicted, observed, none, none, sigma, on_dynamic_mask);
-  }
-
-  /// Appends a stereo / RGB-D match with the right-image coordinates (ORB-SLAM2's `u_right`,
-  /// for RGB-D `u - bf / depth`) of the prediction and of the keypoint [px].
-  void add_stereo(const Vector2& predicted, const Vector2& observed, Scalar predicted_u_right,
-                  Scalar observed_u_right, Scalar sigma = Scalar(1), bool on_dynamic_mask = false) {
-    detail::require(std::isfinite(predicted_u_right) && std::isfinite(observed_u_right), "match ",
-                    size(), ": u_right is not finite (predicted ", predicted_u_right, ", observed ",
-                    observed_u_right, ")");
-    push(predicted, observed, predicted_u_right, observed_u_right, sigma, on_dynamic_mask);
-    ++n_stereo_;
-  }
-
-  /// Replaces the prediction of match i (used when the pose is refined and points reprojected).
-  void set_predicted(Index i, const Vector2& predicted, Scalar predicted_u_right = Scalar(0)) {
-    check_index(i);
-    detail::require(predicted.allFinite() && std::isfinite(predicted_u_right), "match ", i,
-                    ": new prediction is not finite (", predicted.x(), ", ", predicted.y(), ", ",
-                    predicted_u_right, ")");
-    const auto k = static_cast<std::size_t>(i);
-    if (has_right(i)) predicted_right_[k] = predicted_u_right;
-    predicted_x_[k] = predicted.x();
-    predicted_y_[k] = predicted.y();
-  }
-
-  [[nodiscard]] Index size() const { return static_cast<Index>(sigma_.size()); }
-  [[nodiscard]] bool empty() const { return sigma_.empty(); }
-  /// Number of matches added with add_stereo.
-  [[nodiscard]] Index stereo_count() const { return n_stereo_; }
-
-  [[nodiscard]] Vector2 predicted(Index i) const {
-    const auto k = static_cast<std::size_t>(i);
-    return {predicted_x_[k], predicted_y_[k]};
-  }
-  [[nodiscard]] Vector2 observed(Index i) const {
-    const auto k = static_cast<std::size_t>(i);
-    return {observed_x_[k], observed_y_[k]};
-  }
-  /// r_i = observed - predicted [px].
-  [[nodiscard]] Vector2 residual(Index i) const {
-    const auto k = static_cast<std::size_t>(i);
-    return {observed_x_[k] - predicted_x_[k], observed_y_[k] - predicted_y_[k]};
-  }
-  /// True when match i carries a stereo component.
-  [[nodiscard]] bool has_right(Index i) const {
-    return !std::isnan(observed_right_[static_cast<std::size_t>(i)]);
-  }
-  /// The stereo residual component u_right(observed) - u_right(predicted) [px], or 0 if none.
-  [[nodiscard]] Scalar right_residual(Index i) const {
-    const auto k = static_cast<std::size_t>(i);
-    return has_right(i) ? observed_right_[k] - predicted_right_[k] : Scalar(0);
-  }
-  [[nodiscard]] Scalar sigma(Index i) const { return sigma_[static_cast<std::size_t>(i)]; }
-  [[nodiscard]] bool on_dynamic_mask(Index i) const {
-    return flag_[static_cast<std::size_t>(i)] != 0;
-  }
-
-  /// Squared residual norm over all components (2, or 3 for stereo) [px^2].
-  [[nodiscard]] Scalar squared_residual(Index i) const {
-    const Vector2 r = residual(i);
-    const Scalar right = right_residual(i);
-    return r.squaredNorm() + right * right;
-  }
-
- private:
-  void push(const Vector2& predicted, const Vector2& observed, Scalar predicted_right,
-            Scalar observed_right, Scalar sigma, bool flag) {
-    const Index i = size();
-    detail::require(predicted.allFinite(), "match ", i, ": predicted pixel is not finite (",
-                    predicted.x(), ", ", predicted.y(), ")");
-    detail::require(observed.allFinite(), "match ", i, ": observed pixel is not finite (",
-                    observed.x(), ", ", observed.y(), ")");
-    detail::require(std::isfinite(sigma) && sigma > Scalar(0), "match ", i,
-                    ": sigma must be finite and > 0, got ", sigma);
-    predicted_x_.push_back(predicted.x());
-    predicted_y_.push_back(predicted.y());
-    observed_x_.push_back(observed.x());
-    observed_y_.push_back(observed.y());
-    predicted_right_.push_back(predicted_right);
-    observed_right_.push_back(observed_right);
-    sigma_.push_back(sigma);
-    flag_.push_back(flag ? 1 : 0);
-  }
-  void check_index(Index i) const {
-    detail::require(i >= 0 && i < size(), "match index ", i, " out of range [0, ", size(), ")");
-  }
-
-  std::vector<Scalar> predicted_x_, predicted_y_, observed_x_, observed_y_;
-  std::vector<Scalar> predicted_right_, observed_right_;  // NaN for monocular matches
-  std::vector<Scalar> sigma_;
-  std::vector<std::uint8_t> flag_;
-  Index n_stereo_ = 0;
-};
 
 /// The model of the coherent residual a rough pose gives the static matches.
 enum class ResidualCenter {

@@ -22,16 +22,13 @@
 #include <cmath>
 
 #include "hbos/error.hpp"
-#include "hbos/pinhole.hpp"
-#include "hbos/pose_refinement.hpp"
-#include "hbos/residuals.hpp"
-#include "hbos/screen.hpp"
-#include "hbos/screen_strategies.hpp"
+#include "hbos/screening/pinhole.hpp"
+#include "hbos/screening/pose_refinement.hpp"
+#include "hbos/screening/residual_field.hpp"
+#include "hbos/screening/screen.hpp"
+#include "hbos/screening/strategies.hpp"
 
 namespace hbos {
-
-using Matchesd = Matches<double>;
-using Matchesf = Matches<float>;
 
 /// Fills `matches` (cleared first) with the map points `points_world` (3 x n [m]) projected by
 /// `T_cur_world` through `camera` as predictions, the keypoints `observed` (2 x n [px]), their

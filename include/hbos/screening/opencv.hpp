@@ -19,8 +19,8 @@
 #include <vector>
 
 #include "hbos/error.hpp"
-#include "hbos/residuals.hpp"
-#include "hbos/screen.hpp"
+#include "hbos/screening/residual_field.hpp"
+#include "hbos/screening/screen.hpp"
 
 namespace hbos {
 

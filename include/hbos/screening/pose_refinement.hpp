@@ -21,7 +21,7 @@
 #include <cmath>
 
 #include "hbos/error.hpp"
-#include "hbos/pinhole.hpp"
+#include "hbos/screening/pinhole.hpp"
 
 namespace hbos {
 

@@ -15,7 +15,7 @@
 #include <utility>
 #include <vector>
 
-#include "hbos/threshold.hpp"  // detail::mul_rounded
+#include "hbos/detail/numpy.hpp"  // detail::mul_rounded
 
 namespace hbos::detail {
 

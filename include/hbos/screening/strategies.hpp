@@ -48,7 +48,7 @@
 #include "hbos/binning.hpp"
 #include "hbos/error.hpp"
 #include "hbos/histogram.hpp"
-#include "hbos/residuals.hpp"
+#include "hbos/screening/residual_field.hpp"
 #include "hbos/threshold.hpp"
 
 namespace hbos {

@@ -31,8 +31,8 @@
 
 #include "hbos/error.hpp"
 #include "hbos/histogram.hpp"
-#include "hbos/residuals.hpp"
-#include "hbos/screen_strategies.hpp"
+#include "hbos/screening/residual_field.hpp"
+#include "hbos/screening/strategies.hpp"
 #include "hbos/threshold.hpp"
 
 namespace hbos {

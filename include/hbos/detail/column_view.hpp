@@ -1,0 +1,126 @@
+#pragma once
+/// \file
+/// A column as the kernels read it (a strided pointer) and the fused min/max/finiteness pass:
+/// shared by edge placement (binning.hpp) and counting and scoring (histogram.hpp).
+
+#include <Eigen/Core>
+#include <cmath>
+#include <cstddef>
+#include <utility>
+#include <vector>
+
+#include "hbos/error.hpp"
+
+namespace hbos::detail {
+
+/// A column as a strided pointer: what every kernel reads.
+template <class Scalar>
+struct ColumnView {
+  const Scalar* data = nullptr;
+  Eigen::Index size = 0;
+  Eigen::Index stride = 1;
+  [[nodiscard]] Scalar operator[](Eigen::Index i) const { return data[i * stride]; }
+};
+
+/// A view of `column`: in place when the expression has direct access (matrices, maps, blocks),
+/// otherwise evaluated into `storage`.
+template <class Scalar, class Column>
+ColumnView<Scalar> view_of(const Column& column, std::vector<Scalar>& storage) {
+  if constexpr ((Column::Flags & Eigen::DirectAccessBit) != 0) {
+    return {column.data(), column.size(), column.innerStride()};
+  } else {
+    storage.resize(static_cast<std::size_t>(column.size()));
+    for (Eigen::Index i = 0; i < column.size(); ++i)
+      storage[static_cast<std::size_t>(i)] = column.coeff(i);
+    return {storage.data(), column.size(), 1};
+  }
+}
+
+/// Throws naming the first non-finite value of feature `feature`.
+template <class Scalar>
+[[noreturn]] void throw_not_finite(const ColumnView<Scalar>& x, Eigen::Index feature) {
+  for (Eigen::Index i = 0; i < x.size; ++i)
+    require(std::isfinite(x[i]), "X(", i, ", ", feature, ") is not finite (", x[i], ")");
+  throw InvalidArgument(concat("feature ", feature, " has a non-finite value"));
+}
+
+/// Calls `body(value_at)` with an accessor specialised for contiguous columns, so the common
+/// unit-stride case compiles to plain (vectorisable) pointer loops.
+template <class Scalar, class Body>
+void with_access(const ColumnView<Scalar>& x, Body&& body) {
+  if (x.stride == 1) {
+    const Scalar* p = x.data;
+    body([p](Eigen::Index i) { return p[i]; });
+  } else {
+    const Scalar* p = x.data;
+    const Eigen::Index stride = x.stride;
+    body([p, stride](Eigen::Index i) { return p[i * stride]; });
+  }
+}
+
+/// min and max of a column in one pass, and whether every value is finite.
+template <class Scalar>
+struct MinMax {
+  Scalar lo, hi;
+  bool finite;
+};
+
+/// One pass over `x` (at least one value): its min, its max and whether all values are finite.
+template <class Scalar>
+MinMax<Scalar> scan_min_max(const ColumnView<Scalar>& x) {
+  // v * 0 is 0 for finite v and NaN otherwise, so one accumulated sum checks finiteness in the
+  // same pass. GCC does not vectorise min/max reductions on its own; on contiguous data Eigen's
+  // packet primitives do it explicitly (SSE2 and up). Four packets per step, each with its own
+  // min and max accumulator: with fewer, the loop waits on the latency of the min/max chains
+  // (measured: 2x slower than a streaming sum at 1e6 rows) instead of on memory.
+  Scalar lo = x[0], hi = x[0], check = 0;
+  Eigen::Index i = 0;
+  if (x.stride == 1) {
+    using Packet = typename Eigen::internal::packet_traits<Scalar>::type;
+    constexpr Eigen::Index P = Eigen::internal::packet_traits<Scalar>::size;
+    if constexpr (P > 1) {
+      namespace in = Eigen::internal;
+      const Scalar* p = x.data;
+      Packet lo0 = in::pset1<Packet>(lo), lo1 = lo0, lo2 = lo0, lo3 = lo0;
+      Packet hi0 = lo0, hi1 = lo0, hi2 = lo0, hi3 = lo0;
+      const Packet zero = in::pset1<Packet>(Scalar(0));
+      Packet c0 = zero, c1 = zero;
+      for (; i + 4 * P <= x.size; i += 4 * P) {
+        const Packet a = in::ploadu<Packet>(p + i);
+        const Packet b = in::ploadu<Packet>(p + i + P);
+        const Packet c = in::ploadu<Packet>(p + i + 2 * P);
+        const Packet d = in::ploadu<Packet>(p + i + 3 * P);
+        lo0 = in::pmin(lo0, a);
+        lo1 = in::pmin(lo1, b);
+        lo2 = in::pmin(lo2, c);
+        lo3 = in::pmin(lo3, d);
+        hi0 = in::pmax(hi0, a);
+        hi1 = in::pmax(hi1, b);
+        hi2 = in::pmax(hi2, c);
+        hi3 = in::pmax(hi3, d);
+        c0 = in::padd(c0, in::padd(in::pmul(a, zero), in::pmul(b, zero)));
+        c1 = in::padd(c1, in::padd(in::pmul(c, zero), in::pmul(d, zero)));
+      }
+      lo = in::predux_min(in::pmin(in::pmin(lo0, lo1), in::pmin(lo2, lo3)));
+      hi = in::predux_max(in::pmax(in::pmax(hi0, hi1), in::pmax(hi2, hi3)));
+      check = in::predux(in::padd(c0, c1));
+    }
+  }
+  for (; i < x.size; ++i) {
+    const Scalar v = x[i];
+    lo = v < lo ? v : lo;
+    hi = v > hi ? v : hi;
+    check += v * Scalar(0);
+  }
+  return {lo, hi, check == Scalar(0)};
+}
+
+/// min and max of a column in one pass, throwing on any NaN or infinity.
+template <class Scalar>
+std::pair<Scalar, Scalar> finite_min_max(const ColumnView<Scalar>& x, Eigen::Index feature) {
+  const MinMax<Scalar> r = scan_min_max(x);
+  if (!r.finite) throw_not_finite(x, feature);
+  return {r.lo, r.hi};
+}
+
+}  // namespace hbos::detail
