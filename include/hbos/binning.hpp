@@ -27,6 +27,7 @@
 #include <vector>
 
 #include "hbos/detail/column_view.hpp"
+#include "hbos/detail/scaling.hpp"
 #include "hbos/error.hpp"
 
 namespace hbos {
@@ -66,8 +67,13 @@ struct Binning {
   /// weights. It removes the arbitrariness of the bin origin; 1 = the plain histogram.
   /// EqualWidth and FixedWidth only (EqualFrequency ignores it).
   Eigen::Index shifts = 1;
-  Eigen::Index max_bins = 65536;  ///< upper bound on any bin count (fine bins with shifts), >= 1
+  /// Upper bound on any bin count (fine bins with shifts), in [1, kMaxBinsLimit].
+  Eigen::Index max_bins = 65536;
 };
+
+/// The largest legal Binning::max_bins: 2^24 bins (about 0.7 GB of histogram per feature in
+/// double), so that no parameter value asks for memory no machine has.
+inline constexpr Eigen::Index kMaxBinsLimit = Eigen::Index{1} << 24;
 
 /// Everything the model needs to know about one feature.
 struct FeatureSpec {
@@ -92,8 +98,12 @@ namespace detail {
 
 inline void validate(const FeatureSpec& spec, Eigen::Index feature) {
   const Binning& b = spec.binning;
-  require(b.max_bins >= 1, "feature ", feature, ": max_bins must be >= 1, got ", b.max_bins);
+  require(b.max_bins >= 1 && b.max_bins <= kMaxBinsLimit, "feature ", feature,
+          ": max_bins must lie in [1, ", kMaxBinsLimit, "], got ", b.max_bins);
   require(b.shifts >= 1, "feature ", feature, ": shifts must be >= 1, got ", b.shifts);
+  // Even one coarse bin holds `shifts` fine bins (EqualFrequency ignores shifts).
+  require(b.method == BinningMethod::EqualFrequency || b.shifts <= b.max_bins, "feature ", feature,
+          ": shifts ", b.shifts, " exceeds max_bins = ", b.max_bins);
   if (b.method == BinningMethod::FixedWidth) {
     require(std::isfinite(b.width) && b.width > 0.0, "feature ", feature,
             ": FixedWidth bin width must be finite and > 0, got ", b.width);
@@ -113,6 +123,30 @@ inline void validate(const FeatureSpec& spec, Eigen::Index feature) {
             ": a periodic feature has no upper or lower tail; use Tail::Both");
     require(b.method != BinningMethod::EqualFrequency, "feature ", feature,
             ": EqualFrequency binning is not defined on a circle; use EqualWidth or FixedWidth");
+  }
+}
+
+/// The checks that depend on the model's scalar type: every parameter the bins are computed from
+/// must be a normal Scalar (a float model cannot hold a period of 1e39 or a width of 1e-40).
+template <class Scalar>
+void validate_for_scalar(const FeatureSpec& spec, Eigen::Index feature) {
+  using Limits = std::numeric_limits<Scalar>;
+  const char* type = sizeof(Scalar) == sizeof(float) ? "float" : "double";
+  const Binning& b = spec.binning;
+  const auto max = static_cast<double>(Limits::max());
+  const auto min = static_cast<double>(Limits::min());
+  if (b.method == BinningMethod::FixedWidth) {
+    require(b.width <= max, "feature ", feature, ": FixedWidth bin width ", b.width,
+            " exceeds the largest ", type, " (", Limits::max(), ")");
+    require(b.width / static_cast<double>(b.shifts) >= min, "feature ", feature,
+            ": FixedWidth bin width ", b.width, " / ", b.shifts,
+            " shifts is below the smallest normal ", type, " (", Limits::min(), ")");
+  }
+  if (spec.periodic) {
+    require(spec.period <= max, "feature ", feature, ": period ", spec.period,
+            " exceeds the largest ", type, " (", Limits::max(), ")");
+    require(std::abs(spec.period_start) <= max, "feature ", feature, ": period_start ",
+            spec.period_start, " is beyond the range of ", type, " (", Limits::max(), ")");
   }
 }
 
@@ -149,15 +183,18 @@ class EdgeCounter {
  public:
   /// Buckets `n` values x[i * stride] of range [lo, hi] (hi > lo) into values[0, n); `values`
   /// (grown to at least 2n) and `index` are reusable buffers (no allocation once grown).
+  /// `scale` (a power of two, detail::rule_scale) is applied to every value first, so that
+  /// ranges which overflow or underflow a double still give u in [0, 1]; 1 changes nothing.
   template <class Scalar>
   EdgeCounter(const Scalar* x, Eigen::Index n, Eigen::Index stride, Scalar lo, Scalar hi,
-              std::vector<double>& values, std::vector<std::uint32_t>& index)
+              std::vector<double>& values, std::vector<std::uint32_t>& index, double scale = 1.0)
       : cells_(static_cast<std::size_t>(std::clamp<Eigen::Index>(n / 4, 64, 1 << 18))),
         dcells_(static_cast<double>(cells_)),
         index_(index) {
-    const double inv_range = 1.0 / (static_cast<double>(hi) - static_cast<double>(lo));
+    const double base = static_cast<double>(lo) * scale;
+    const double inv_range = 1.0 / (static_cast<double>(hi) * scale - base);
     const auto u_of = [&](Eigen::Index i) {
-      return (static_cast<double>(x[i * stride]) - static_cast<double>(lo)) * inv_range;
+      return (static_cast<double>(x[i * stride]) * scale - base) * inv_range;
     };
     // Counting sort by cell, in two scatters: first into coarse groups of 256 cells (through
     // the second half of `values`), then each group, now small enough for L1, into its cells.
@@ -269,7 +306,8 @@ template <class Scalar>
 [[nodiscard]] Eigen::Index birge_rozenblac_bins(const Scalar* x, Eigen::Index n,
                                                 Eigen::Index stride, Scalar lo, Scalar hi,
                                                 Eigen::Index max_bins, std::vector<double>& values,
-                                                std::vector<std::uint32_t>& index) {
+                                                std::vector<std::uint32_t>& index,
+                                                double scale = 1.0) {
   if (!(hi > lo) || n < 4) return 1;
   const auto b_max = std::min<Eigen::Index>(
       max_bins,
@@ -280,7 +318,7 @@ template <class Scalar>
   const auto nb = static_cast<std::size_t>(b_max) + 1;
   const auto un = static_cast<std::size_t>(n);
   values.resize(std::max(values.size(), un + std::max(un, 2 * nb + 4096)));
-  EdgeCounter counter(x, n, stride, lo, hi, values, index);
+  EdgeCounter counter(x, n, stride, lo, hi, values, index, scale);
   double* sum_n_log_n = values.data() + un;
   double* cumulative = sum_n_log_n + nb;
   std::fill(sum_n_log_n, sum_n_log_n + 2 * nb, 0.0);
@@ -321,18 +359,27 @@ template <class Scalar>
 }
 
 /// Where one feature's bins sit: what edge placement decides and counting and scoring read.
+///
+/// Uniform bins cut x at (x * scale - base) * inv_width. The scale is a power of two, 1 on every
+/// ordinary column (then base == lo and the offset is plain x - lo); a column whose range
+/// overflows Scalar (-1e308 to 1e308) or whose bins would be narrower than the smallest normal
+/// Scalar (a subnormal range) is binned in that scaled form instead, with the same bins.
 template <class Scalar>
 struct EdgeLayout {
   std::vector<Scalar> edges;  ///< bins + 1 ascending edges; bin k is [edges[k], edges[k+1])
   Scalar lo = 0, hi = 0;      ///< the fitted range (the period for a periodic feature)
-  Scalar inv_width = 0;       ///< uniform bins only (0 for a constant feature)
+  Scalar inv_width = 0;       ///< uniform bins only (0 for a constant feature), of scaled values
   Scalar period = 0;          ///< periodic only
+  Scalar scale = 1;           ///< uniform bins: power of two applied to values before binning
+  Scalar base = 0;            ///< lo * scale
 };
 
-/// The bin-count rules' reusable buffers (Birgé–Rozenblac's bucketed values and cells).
+/// The bin-count rules' reusable buffers (Birgé–Rozenblac's bucketed values and cells) and the
+/// prefix sums of the linear-time averaged shifted histogram.
 struct RuleScratch {
   std::vector<double> values;
   std::vector<std::uint32_t> cells;
+  std::vector<std::int64_t> sums;
 };
 
 /// The bin count `binning.rule` gives column `x` over [lo, hi].
@@ -340,7 +387,10 @@ template <class Scalar>
 Eigen::Index rule_bins(const ColumnView<Scalar>& x, const Binning& binning, Scalar lo, Scalar hi,
                        std::vector<Scalar>& scratch, RuleScratch& rule_scratch) {
   const Eigen::Index n = x.size;
-  const double range = static_cast<double>(hi) - static_cast<double>(lo);
+  // Values are read times s (1 on ordinary columns, see rule_scale): bin counts are invariant
+  // under it, and extreme columns (1e308, subnormals) then neither overflow nor underflow.
+  const double s = rule_scale(static_cast<double>(lo), static_cast<double>(hi));
+  const double range = static_cast<double>(hi) * s - static_cast<double>(lo) * s;
   const double dn = static_cast<double>(n);
   switch (binning.rule) {
     case BinCountRule::Fixed:
@@ -351,11 +401,11 @@ Eigen::Index rule_bins(const ColumnView<Scalar>& x, const Binning& binning, Scal
       return clamp_bins(static_cast<double>(sturges_bins(n)), binning.max_bins);
     case BinCountRule::Scott: {
       double mean = 0.0;
-      for (Eigen::Index i = 0; i < n; ++i) mean += static_cast<double>(x[i]);
+      for (Eigen::Index i = 0; i < n; ++i) mean += static_cast<double>(x[i]) * s;
       mean /= dn;
       double ss = 0.0;
       for (Eigen::Index i = 0; i < n; ++i) {
-        const double d = static_cast<double>(x[i]) - mean;
+        const double d = static_cast<double>(x[i]) * s - mean;
         ss += d * d;
       }
       const double h =
@@ -373,9 +423,10 @@ Eigen::Index rule_bins(const ColumnView<Scalar>& x, const Binning& binning, Scal
         const auto i = static_cast<std::ptrdiff_t>(std::floor(pos));
         const double g = pos - static_cast<double>(i);
         std::nth_element(scratch.begin(), scratch.begin() + i, scratch.begin() + n);
-        const double a = static_cast<double>(scratch[static_cast<std::size_t>(i)]);
+        const double a = static_cast<double>(scratch[static_cast<std::size_t>(i)]) * s;
         const double b = i + 1 < n ? static_cast<double>(*std::min_element(scratch.begin() + i + 1,
-                                                                           scratch.begin() + n))
+                                                                           scratch.begin() + n)) *
+                                         s
                                    : a;
         return a + (b - a) * g;
       };
@@ -385,25 +436,66 @@ Eigen::Index rule_bins(const ColumnView<Scalar>& x, const Binning& binning, Scal
     }
     case BinCountRule::BirgeRozenblac:
       return birge_rozenblac_bins(x.data, n, x.stride, lo, hi, binning.max_bins,
-                                  rule_scratch.values, rule_scratch.cells);
+                                  rule_scratch.values, rule_scratch.cells, s);
   }
   return binning.bins;
 }
 
+/// FixedWidth bins over the column range [lo, hi]: sets layout.lo, layout.hi and returns the
+/// coarse bin count. Edges sit at origin + j * width while the offsets (v - origin) / width stay
+/// below 2^53 (beyond, floor(q) + 1 == floor(q) and no edge index exists): then the bins keep
+/// their width but start at the column minimum. Either way lo <= every value <= hi.
+/// \throws InvalidArgument when the bins exceed max_bins.
+template <class Scalar>
+Eigen::Index place_fixed_width(const Binning& binning, Eigen::Index shifts, Scalar lo, Scalar hi,
+                               Eigen::Index feature, EdgeLayout<Scalar>& layout) {
+  const double w = binning.width;
+  const double o = binning.origin;
+  const auto dlo = static_cast<double>(lo);
+  const auto dhi = static_cast<double>(hi);
+  const double q_lo = (dlo - o) / w;
+  const double q_hi = (dhi - o) / w;
+  const double first = std::floor(q_lo);
+  const double last = std::floor(q_hi) + 1.0;
+  double lo_edge = o + first * w;
+  double hi_edge = o + last * w;
+  double needed = last - first;
+  constexpr double exact = 0x1p53;
+  const bool anchored = std::abs(q_lo) < exact && std::abs(q_hi) < exact &&
+                        std::isfinite(lo_edge) && std::isfinite(hi_edge);
+  if (!anchored) {
+    lo_edge = dlo;
+    needed = std::floor(span_over(dlo, dhi, w)) + 1.0;
+    hi_edge = dlo + needed * w;
+  }
+  require(needed <= static_cast<double>(binning.max_bins) / static_cast<double>(shifts), "feature ",
+          feature, ": fixed bin width ", binning.width, " over the range [", lo, ", ", hi,
+          "] needs ", needed, " bins, more than max_bins = ", binning.max_bins);
+  // Rounding of o + j * w must never leave a value outside its own layout.
+  layout.lo = saturate_cast<Scalar>(std::min(lo_edge, dlo));
+  layout.hi = saturate_cast<Scalar>(std::max(hi_edge, dhi));
+  return static_cast<Eigen::Index>(needed);
+}
+
 /// Uniform bins (equal or fixed width, periodic or not) for `x`, `shifts` fine bins per coarse
-/// bin, into `layout`. \throws InvalidArgument when the bins exceed `max_bins`.
+/// bin, into `layout` (see EdgeLayout for the scaled form of extreme columns).
+/// \throws InvalidArgument when the bins exceed `max_bins`, or a period is too short for its
+/// bins to be normal Scalars.
 template <class Scalar>
 void place_uniform_edges(const ColumnView<Scalar>& x, const FeatureSpec& spec, Eigen::Index shifts,
                          std::vector<Scalar>& scratch, RuleScratch& rule_scratch,
                          Eigen::Index feature, EdgeLayout<Scalar>& layout) {
+  using Limits = std::numeric_limits<Scalar>;
   const Binning& binning = spec.binning;
+  const bool fixed = binning.method == BinningMethod::FixedWidth;
   Eigen::Index k = 1;
   Scalar width = 0;
+  layout.scale = 1;
   if (spec.periodic) {
-    layout.lo = static_cast<Scalar>(spec.period_start);
+    layout.lo = static_cast<Scalar>(spec.period_start);  // validate_for_scalar: representable
     layout.period = static_cast<Scalar>(spec.period);
-    layout.hi = layout.lo + layout.period;
-    if (binning.method == BinningMethod::FixedWidth) {
+    layout.hi = saturate_cast<Scalar>(spec.period_start + spec.period);
+    if (fixed) {
       // The period must hold a whole number of bins: the width is rounded to the nearest divisor.
       k = clamp_bins(std::round(spec.period / binning.width), binning.max_bins);
     } else {
@@ -412,17 +504,9 @@ void place_uniform_edges(const ColumnView<Scalar>& x, const FeatureSpec& spec, E
     width = layout.period / static_cast<Scalar>(k);
   } else {
     const auto [lo, hi] = finite_min_max(x, feature);
-    if (binning.method == BinningMethod::FixedWidth) {
-      const double first = std::floor((static_cast<double>(lo) - binning.origin) / binning.width);
-      const double last =
-          std::floor((static_cast<double>(hi) - binning.origin) / binning.width) + 1.0;
-      require(last - first <= static_cast<double>(binning.max_bins) / static_cast<double>(shifts),
-              "feature ", feature, ": fixed bin width ", binning.width, " over the range [", lo,
-              ", ", hi, "] needs ", last - first, " bins, more than max_bins = ", binning.max_bins);
-      k = static_cast<Eigen::Index>(last - first);
+    if (fixed) {
+      k = place_fixed_width(binning, shifts, lo, hi, feature, layout);
       width = static_cast<Scalar>(binning.width);
-      layout.lo = static_cast<Scalar>(binning.origin + first * binning.width);
-      layout.hi = static_cast<Scalar>(binning.origin + last * binning.width);
     } else {
       layout.lo = lo;
       layout.hi = hi;
@@ -432,18 +516,49 @@ void place_uniform_edges(const ColumnView<Scalar>& x, const FeatureSpec& spec, E
       }
     }
   }
-  // Averaged shifted histograms count on a grid m times finer than the coarse bins.
-  if (width > Scalar(0) && shifts > 1) {
-    require(k * shifts <= binning.max_bins, "feature ", feature, ": ", k, " bins x ", shifts,
-            " shifts exceed max_bins = ", binning.max_bins);
-    k *= shifts;
-    width /= static_cast<Scalar>(shifts);
+  // Averaged shifted histograms count on a grid m times finer than the coarse bins (not for a
+  // constant column: its one bin has no width to divide).
+  const bool spread = fixed || spec.periodic || layout.hi > layout.lo;
+  const Eigen::Index m = spread && shifts > 1 ? shifts : 1;
+  require(k <= binning.max_bins / m, "feature ", feature, ": ", k, " bins x ", m,
+          " shifts exceed max_bins = ", binning.max_bins);
+  Scalar fine = m > 1 ? width / static_cast<Scalar>(m) : width;
+  if (spec.periodic) {
+    require(fine >= Limits::min(), "feature ", feature, ": period ", spec.period, " cut into ",
+            k * m, " bins gives bins of width ", fine, ", below the smallest normal Scalar (",
+            Limits::min(), "); use a longer period or fewer bins");
+  } else if (spread && (!std::isfinite(layout.hi - layout.lo) || !(fine >= Limits::min()))) {
+    // A range that overflows Scalar, or bins narrower than the smallest normal Scalar (1 / width
+    // would be infinite): bin x * s instead, s a power of two that puts the values near 1.
+    layout.scale = unit_scale(layout.lo, layout.hi);
+    const Scalar s = layout.scale;
+    width = fixed ? static_cast<Scalar>(binning.width) * s
+                  : (layout.hi * s - layout.lo * s) / static_cast<Scalar>(k);
+    fine = m > 1 ? width / static_cast<Scalar>(m) : width;
+    require(fine >= Limits::min() && std::isfinite(fine), "feature ", feature,
+            ": cannot bin the range [", layout.lo, ", ", layout.hi, "] into ", k * m, " bins");
   }
-  layout.inv_width = width > Scalar(0) ? Scalar(1) / width : Scalar(0);
+  k *= m;
+  layout.base = layout.lo * layout.scale;
+  layout.inv_width = fine > Scalar(0) ? Scalar(1) / fine : Scalar(0);
   layout.edges.resize(static_cast<std::size_t>(k + 1));
-  for (Eigen::Index j = 0; j < k; ++j)
-    layout.edges[static_cast<std::size_t>(j)] = layout.lo + static_cast<Scalar>(j) * width;
+  if (layout.scale == Scalar(1)) {
+    for (Eigen::Index j = 0; j < k; ++j)
+      layout.edges[static_cast<std::size_t>(j)] = layout.lo + static_cast<Scalar>(j) * fine;
+  } else {
+    for (Eigen::Index j = 0; j < k; ++j)
+      layout.edges[static_cast<std::size_t>(j)] =
+          (layout.base + static_cast<Scalar>(j) * fine) / layout.scale;
+  }
   layout.edges.back() = layout.hi;
+}
+
+/// The point midway between a < b, without the overflow of b - a (a = -1e308, b = 1e308).
+template <class Scalar>
+[[nodiscard]] Scalar midpoint(Scalar a, Scalar b) {
+  const Scalar d = b - a;
+  if (std::isfinite(d)) return a + d / Scalar(2);
+  return a / Scalar(2) + b / Scalar(2);
 }
 
 template <class Scalar>
@@ -451,9 +566,13 @@ void place_equal_frequency_edges(const Scalar* sorted, Eigen::Index n, Eigen::In
                                  EdgeLayout<Scalar>& layout) {
   // Goldstein & Dengel's dynamic bins: about n/k sorted values per bin; a boundary never splits
   // a run of equal values, so ties may merge bins. Edges sit midway between the last value of a
-  // bin and the first of the next, so every bin has positive width when values differ.
+  // bin and the first of the next. Between adjacent doubles the midpoint rounds onto one of
+  // them: an edge that would not lie strictly inside (previous edge, hi) is dropped, so every
+  // bin has positive width.
   layout.lo = sorted[0];
   layout.hi = sorted[n - 1];
+  layout.scale = 1;
+  layout.base = layout.lo;
   layout.edges.clear();
   layout.edges.push_back(layout.lo);
   Eigen::Index previous = 0;
@@ -463,7 +582,8 @@ void place_equal_frequency_edges(const Scalar* sorted, Eigen::Index n, Eigen::In
     if (p <= previous) continue;
     while (p < n && sorted[p] == sorted[p - 1]) ++p;
     if (p >= n) break;
-    layout.edges.push_back(sorted[p - 1] + (sorted[p] - sorted[p - 1]) / Scalar(2));
+    const Scalar edge = midpoint(sorted[p - 1], sorted[p]);
+    if (edge > layout.edges.back() && edge < layout.hi) layout.edges.push_back(edge);
     previous = p;
   }
   layout.edges.push_back(layout.hi);

@@ -42,11 +42,15 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <string>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "hbos/binning.hpp"
+#include "hbos/detail/scaling.hpp"
 #include "hbos/error.hpp"
+#include "hbos/histogram_parts.hpp"
 
 namespace hbos {
 
@@ -116,6 +120,9 @@ class Histogram {
 
   /// Pre-grows storage for up to `bins` bins, so refits up to that size do not allocate.
   void reserve(Index bins) {
+    detail::require(bins >= 0 && bins <= kMaxBinsLimit, "Histogram::reserve: bins must lie in [0, ",
+                    kMaxBinsLimit, "], got ", bins);
+    rule_scratch_.sums.reserve(static_cast<std::size_t>(2 * bins + 1));
     layout_.edges.reserve(static_cast<std::size_t>(bins + 1));
     counts_.reserve(static_cast<std::size_t>(bins));
     contribution_.reserve(static_cast<std::size_t>(bins));
@@ -124,8 +131,57 @@ class Histogram {
 
   /// Frees the buffers only fitting needs (a fitted model keeps just what scoring reads).
   void release_fit_buffers() {
+    std::vector<std::int64_t>().swap(rule_scratch_.sums);
     std::vector<std::uint32_t>().swap(rule_scratch_.cells);
     std::vector<double>().swap(rule_scratch_.values);
+  }
+
+  /// The parts this histogram is built from (hbos/histogram_parts.hpp): what model files store
+  /// and merged fits add up.
+  [[nodiscard]] HistogramParts<Scalar> parts() const {
+    HistogramParts<Scalar> p;
+    p.edges = layout_.edges;
+    p.counts = counts_;
+    p.lo = layout_.lo;
+    p.hi = layout_.hi;
+    p.inv_width = layout_.inv_width;
+    p.period = layout_.period;
+    p.scale = layout_.scale;
+    p.base = layout_.base;
+    p.shifts = shifts_;
+    p.tail = tail_;
+    p.periodic = periodic_;
+    p.uniform = uniform_;
+    return p;
+  }
+
+  /// Rebuilds a fitted histogram from its parts, deriving the contributions with the code `fit`
+  /// uses (the sample count is the sum of the counts): `from_parts(h.parts(), options)` scores
+  /// bit for bit like `h` when `options` are the ones `h` was fitted with.
+  /// \throws InvalidArgument when the parts break their invariant (messages start with `where`).
+  [[nodiscard]] static Histogram from_parts(HistogramParts<Scalar> parts,
+                                            const ScoringOptions& options,
+                                            const std::string& where = "histogram") {
+    detail::validate_parts(parts, where);
+    detail::validate(options);
+    Histogram h;
+    Index n = 0;
+    for (const Index c : parts.counts) n += c;
+    detail::require(n > 0, where, ": the counts add up to no samples");
+    h.layout_.edges = std::move(parts.edges);
+    h.layout_.lo = parts.lo;
+    h.layout_.hi = parts.hi;
+    h.layout_.inv_width = parts.inv_width;
+    h.layout_.period = parts.period;
+    h.layout_.scale = parts.scale;
+    h.layout_.base = parts.base;
+    h.counts_ = std::move(parts.counts);
+    h.shifts_ = parts.shifts;
+    h.tail_ = parts.tail;
+    h.periodic_ = parts.periodic;
+    h.uniform_ = parts.uniform;
+    h.score_bins(n, options);
+    return h;
   }
 
   /// Re-fits this histogram to `column` in place, reusing its storage and `scratch`: no heap
@@ -152,18 +208,30 @@ class Histogram {
                   const ScoringOptions& options, std::vector<Scalar>& scratch, Index feature,
                   BinIndex* bin_index);
 
+  /// The offset of x into the period, in [0, period] (rounding may give exactly period: clamped
+  /// to the last bin). Within a period of the start, x - start; further out (6e16 with a period
+  /// of 2 pi, or a start of 1e300), x - start would lose x's position or t - period * floor(t /
+  /// period) its accuracy, so each term is reduced by the exact fmod first.
   [[nodiscard]] Scalar wrap(Scalar x) const {
+    const Scalar p = layout_.period;
     Scalar t = x - layout_.lo;
-    if (t < Scalar(0) || t >= layout_.period) t -= layout_.period * std::floor(t / layout_.period);
-    return t;  // in [0, period] (rounding may give exactly period: clamped to the last bin)
+    if (t >= Scalar(0) && t < p) return t;
+    t = std::fmod(std::fmod(x, p) - std::fmod(layout_.lo, p), p);  // |t| < p, exact but one sum
+    return t < Scalar(0) ? t + p : t;
   }
-  /// Uniform bins: offset t = x - lower() in [0, upper() - lower()].
+  /// Uniform bins: the bin of offset t = (x * scale - base), clamped into [0, bins()) (NaN: 0).
   [[nodiscard]] Index uniform_bin(Scalar t) const {
-    const auto k = static_cast<Index>(t * layout_.inv_width);
-    return std::min(k, bins() - 1);
+    const Scalar u = t * layout_.inv_width;
+    if (!(u > Scalar(0))) return 0;
+    const Index last = bins() - 1;
+    if (u >= static_cast<Scalar>(last)) return last;
+    return static_cast<Index>(u);
+  }
+  [[nodiscard]] Scalar offset(Scalar x) const {
+    return layout_.scale == Scalar(1) ? x - layout_.lo : x * layout_.scale - layout_.base;
   }
   [[nodiscard]] Index in_range_bin(Scalar x) const {
-    if (uniform_) return uniform_bin(x - layout_.lo);
+    if (uniform_) return uniform_bin(offset(x));
     // Irregular bins: the number of interior edges <= x.
     const auto first = layout_.edges.begin() + 1;
     const auto last = layout_.edges.end() - 1;
@@ -172,6 +240,7 @@ class Histogram {
 
   template <class BinIndex = std::uint32_t>
   void count(const detail::ColumnView<Scalar>& x, BinIndex* bin_index = nullptr);
+  void smooth_counts();
   void score_bins(Index n, const ScoringOptions& options);
 
   detail::EdgeLayout<Scalar> layout_;
@@ -199,8 +268,8 @@ void Histogram<Scalar>::contributions_into(const detail::ColumnView<Scalar>& x, 
   // would otherwise reload them after every store.
   const Scalar lo = layout_.lo, hi = layout_.hi, inv = layout_.inv_width;
   const Scalar* table = contribution_.data();
-  const bool fast =
-      uniform_ && inv > Scalar(0) && bins() <= std::numeric_limits<std::int32_t>::max();
+  const bool fast = uniform_ && inv > Scalar(0) && layout_.scale == Scalar(1) &&
+                    bins() <= std::numeric_limits<std::int32_t>::max();
   // The exact path, for any value: the lookup of contribution(), throwing on non-finite values.
   auto exact = [&](Scalar v) {
     if (!std::isfinite(v)) detail::throw_not_finite(x, feature);
@@ -258,7 +327,8 @@ void Histogram<Scalar>::count(const detail::ColumnView<Scalar>& x, BinIndex* bin
     return;
   }
   constexpr auto int32_max = static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max());
-  if (!uniform_ || !(layout_.inv_width > Scalar(0)) || k > int32_max) {
+  if (!uniform_ || !(layout_.inv_width > Scalar(0)) || layout_.scale != Scalar(1) ||
+      k > int32_max) {
     for (Index i = 0; i < n; ++i) {
       const auto b = static_cast<std::size_t>(in_range_bin(x[i]));
       ++counts_[b];
@@ -305,21 +375,18 @@ void Histogram<Scalar>::count(const detail::ColumnView<Scalar>& x, BinIndex* bin
 }
 
 template <class Scalar>
-void Histogram<Scalar>::score_bins(Index n, const ScoringOptions& options) {
+void Histogram<Scalar>::smooth_counts() {
+  // Smoothed mass around each bin (averaged shifted histograms, Scott 1985): with m shifts the
+  // fine bins are 1/m of a coarse bin and m_i = sum_{|d|<m} (1 - |d|/m) count_{i+d}, i.e. the
+  // average of the m coarse histograms whose origins are shifted by one fine bin each. m = 1 is
+  // the plain histogram. Periodic features wrap around. Stored in contribution_ for now.
   const auto k = counts_.size();
-  contribution_.resize(k);
-  const bool constant = !periodic_ && !(layout_.hi > layout_.lo);
-  if (constant) {
-    contribution_[0] = 0;
-    cap_ = static_cast<Scalar>(std::log(static_cast<double>(n) / options.empty_bin_count));
-    mode_ = 0;
-  } else {
-    // Smoothed mass around each bin (averaged shifted histograms, Scott 1985): with m shifts the
-    // fine bins are 1/m of a coarse bin and m_i = sum_{|d|<m} (1 - |d|/m) count_{i+d}, i.e. the
-    // average of the m coarse histograms whose origins are shifted by one fine bin each. m = 1 is
-    // the plain histogram. Periodic features wrap around. Stored in contribution_ for now.
-    const auto m = static_cast<std::ptrdiff_t>(shifts_);
-    const auto kk = static_cast<std::ptrdiff_t>(k);
+  const auto m = static_cast<std::ptrdiff_t>(shifts_);
+  const auto kk = static_cast<std::ptrdiff_t>(k);
+  // The direct sum costs k m: it serves every usual shift count (the default 25 fine bins x 5
+  // costs 125 steps) bit for bit as it always has; beyond 2^20 steps (5 bins x 13107 shifts
+  // would take 1e9) the same masses come from prefix sums in O(k + m), exactly in integers.
+  if (static_cast<double>(kk) * static_cast<double>(m) <= 1048576.0) {
     for (std::ptrdiff_t i = 0; i < kk; ++i) {
       double mass = static_cast<double>(counts_[static_cast<std::size_t>(i)]);
       for (std::ptrdiff_t d = 1; d < m; ++d) {
@@ -336,6 +403,52 @@ void Histogram<Scalar>::score_bins(Index n, const ScoringOptions& options) {
       }
       contribution_[static_cast<std::size_t>(i)] = static_cast<Scalar>(mass);
     }
+    return;
+  }
+  // sum_{|d|<m} (m - |d|) c_{i+d} = sum_{s<m} b_{i+s}, with the box sums b_u = sum_{t=u-m+1}^{u}
+  // c_t (a triangle is a box convolved with a box); Q holds the prefix sums of b.
+  auto count_at = [&](std::ptrdiff_t t) -> std::int64_t {
+    if (periodic_) {
+      t %= kk;
+      if (t < 0) t += kk;
+    } else if (t < 0 || t >= kk) {
+      return 0;
+    }
+    return static_cast<std::int64_t>(counts_[static_cast<std::size_t>(t)]);
+  };
+  std::vector<std::int64_t>& q = rule_scratch_.sums;
+  q.resize(static_cast<std::size_t>(kk + m));
+  std::int64_t box = 0;
+  for (std::ptrdiff_t t = 1 - m; t <= 0; ++t) box += count_at(t);
+  q[0] = 0;
+  for (std::ptrdiff_t u = 0; u + 1 < kk + m; ++u) {
+    if (u > 0) box += count_at(u) - count_at(u - m);
+    q[static_cast<std::size_t>(u + 1)] = q[static_cast<std::size_t>(u)] + box;
+  }
+  for (std::ptrdiff_t i = 0; i < kk; ++i) {
+    const std::int64_t weighted =
+        q[static_cast<std::size_t>(i + m)] - q[static_cast<std::size_t>(i)];
+    contribution_[static_cast<std::size_t>(i)] =
+        static_cast<Scalar>(static_cast<double>(weighted) / static_cast<double>(m));
+  }
+}
+
+template <class Scalar>
+void Histogram<Scalar>::score_bins(Index n, const ScoringOptions& options) {
+  const auto k = counts_.size();
+  contribution_.resize(k);
+  const bool constant = !periodic_ && !(layout_.hi > layout_.lo);
+  // log(a / b), also where a / b overflows (an empty_bin_count of 1e-308): log a - log b.
+  auto log_ratio = [](double a, double b) {
+    const double q = a / b;
+    return std::isfinite(q) && q > 0.0 ? std::log(q) : std::log(a) - std::log(b);
+  };
+  if (constant) {
+    std::fill(contribution_.begin(), contribution_.end(), Scalar(0));
+    cap_ = static_cast<Scalar>(log_ratio(static_cast<double>(n), options.empty_bin_count));
+    mode_ = 0;
+  } else {
+    smooth_counts();
     // Uniform bins share one nominal width: using it (not edge differences, which carry the
     // rounding of lo + j * width) keeps heights exactly proportional to mass, and scores exactly
     // invariant under affine maps of the feature.
@@ -361,11 +474,41 @@ void Histogram<Scalar>::score_bins(Index n, const ScoringOptions& options) {
       }
       w_max = std::max(w_max, width_of(i));
     }
-    for (std::size_t i = 0; i < k; ++i)
-      contribution_[i] = static_cast<Scalar>(std::max(0.0, std::log(h_max / height(i, true))));
-    // The cap is at least every bin's contribution (with shifts, a bin's smoothed mass can be
-    // below empty_bin_count).
-    cap_ = static_cast<Scalar>(std::log(h_max * w_max / options.empty_bin_count));
+    // Widths far from 1 (bins of subnormal or overflowing width) make the quotients overflow or
+    // underflow: then every height is taken in logs instead.
+    constexpr double w_lo = 0x1p-500, w_hi = 0x1p500;
+    bool ordinary = std::isfinite(h_max) && h_max > 0.0 && w_max <= w_hi;
+    for (std::size_t i = 0; ordinary && i < k; ++i) ordinary = width_of(i) >= w_lo;
+    if (ordinary) {
+      for (std::size_t i = 0; i < k; ++i)
+        contribution_[i] = static_cast<Scalar>(std::max(0.0, log_ratio(h_max, height(i, true))));
+      // The cap is at least every bin's contribution (with shifts, a bin's smoothed mass can be
+      // below empty_bin_count).
+      cap_ = static_cast<Scalar>(log_ratio(h_max * w_max, options.empty_bin_count));
+    } else {
+      auto log_width = [&](std::size_t i) {
+        return detail::log_span(static_cast<double>(layout_.edges[i]),
+                                static_cast<double>(layout_.edges[i + 1]));
+      };
+      auto log_height = [&](std::size_t i, bool regularise) {
+        const double mass = static_cast<double>(contribution_[i]);
+        if (!regularise && !(mass > 0.0)) return -std::numeric_limits<double>::infinity();
+        return std::log(mass > 0.0 ? mass : options.empty_bin_count) - log_width(i);
+      };
+      double lh_max = -std::numeric_limits<double>::infinity();
+      double lw_max = -std::numeric_limits<double>::infinity();
+      for (std::size_t i = 0; i < k; ++i) {
+        const double lh = log_height(i, false);
+        if (lh > lh_max) {
+          lh_max = lh;
+          mode_ = static_cast<Index>(i);
+        }
+        lw_max = std::max(lw_max, log_width(i));
+      }
+      for (std::size_t i = 0; i < k; ++i)
+        contribution_[i] = static_cast<Scalar>(std::max(0.0, lh_max - log_height(i, true)));
+      cap_ = static_cast<Scalar>(lh_max + lw_max - std::log(options.empty_bin_count));
+    }
     for (std::size_t i = 0; i < k; ++i) cap_ = std::max(cap_, contribution_[i]);
   }
 
@@ -385,10 +528,13 @@ void Histogram<Scalar>::score_bins(Index n, const ScoringOptions& options) {
   below_ = tail_ == Tail::Upper ? Scalar(0) : cap_;
   above_ = tail_ == Tail::Lower ? Scalar(0) : cap_;
 
-  // The tolerance counts coarse bins (m fine bins each).
-  const auto tol = static_cast<Scalar>(options.range_tolerance * static_cast<double>(shifts_));
-  tolerance_lo_ = layout_.lo - tol * (layout_.edges[1] - layout_.edges[0]);
-  tolerance_hi_ = layout_.hi + tol * (layout_.edges[k] - layout_.edges[k - 1]);
+  // The tolerance counts coarse bins (m fine bins each); a band beyond the range of Scalar
+  // saturates (every value below the range is then within it).
+  const auto tol =
+      detail::saturate_cast<Scalar>(options.range_tolerance * static_cast<double>(shifts_));
+  auto band = [&](Scalar w) { return tol == Scalar(0) ? Scalar(0) : tol * w; };
+  tolerance_lo_ = layout_.lo - band(layout_.edges[1] - layout_.edges[0]);
+  tolerance_hi_ = layout_.hi + band(layout_.edges[k] - layout_.edges[k - 1]);
 }
 
 template <class Scalar>
@@ -398,6 +544,11 @@ bool Histogram<Scalar>::refit_view(const detail::ColumnView<Scalar>& x, const Fe
                                    Index feature, BinIndex* bin_index) {
   const Index n = x.size;
   detail::require(n > 0, "feature ", feature, ": cannot fit a histogram to no samples");
+  // Checked here, not only by Hbos: every user of a Histogram (the screen, the Workspace) gets
+  // the same guarantees. A few comparisons per feature.
+  detail::validate(spec, feature);
+  detail::validate_for_scalar<Scalar>(spec, feature);
+  detail::validate(options);
   periodic_ = spec.periodic;
   tail_ = spec.tail;
   layout_.period = 0;

@@ -19,6 +19,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "hbos/binning.hpp"
@@ -126,11 +127,15 @@ void write_scores(const std::vector<Histogram<Scalar>>& histograms,
 }
 
 /// Whether every feature's bin count is fixed by its spec alone and at most 256 (fine bins).
+/// Runs before validation: must hold for any parameter values (a spec count that does not match,
+/// bins x shifts that would overflow).
 inline bool at_most_256_bins(const HbosParams& params, Eigen::Index n_features) {
+  if (!params.features.empty() && static_cast<Eigen::Index>(params.features.size()) != n_features)
+    return false;
   for (Eigen::Index j = 0; j < n_features; ++j) {
     const Binning& b = params.spec(j).binning;
-    if (b.method != BinningMethod::EqualWidth || b.rule != BinCountRule::Fixed ||
-        b.bins * b.shifts > 256)
+    if (b.method != BinningMethod::EqualWidth || b.rule != BinCountRule::Fixed || b.bins < 1 ||
+        b.shifts < 1 || b.bins > 256 / b.shifts)
       return false;
   }
   return true;
@@ -301,7 +306,7 @@ class Hbos {
   /// Fits to a raw row-major buffer of `rows` x `cols` values (read in place).
   [[nodiscard]] static Hbos fit_row_major(const Scalar* data, Index rows, Index cols,
                                           const HbosParams& params = {}) {
-    detail::require(data != nullptr || rows * cols == 0, "row-major buffer is null");
+    check_shape(data, rows, cols);
     return fit(RowMajorMap(data, rows, cols), params);
   }
 
@@ -317,7 +322,7 @@ class Hbos {
 
   /// Scores a raw row-major buffer.
   [[nodiscard]] Vector score_row_major(const Scalar* data, Index rows, Index cols) const {
-    detail::require(data != nullptr || rows * cols == 0, "row-major buffer is null");
+    check_shape(data, rows, cols);
     return score(RowMajorMap(data, rows, cols));
   }
 
@@ -352,8 +357,47 @@ class Hbos {
   }
   [[nodiscard]] const HbosParams& params() const { return params_; }
 
+  /// Assembles a model from fitted histograms, one per feature (model files, merged fits: see
+  /// hbos/model_file.hpp, hbos/merge.hpp). Each histogram must agree with the spec `params`
+  /// gives its feature (periodic, tail, shifts, uniform bins) and count `n_samples` samples.
+  /// \throws InvalidArgument naming the first feature that does not.
+  [[nodiscard]] static Hbos from_histograms(std::vector<Histogram<Scalar>> histograms,
+                                            const HbosParams& params, Index n_samples) {
+    const auto d = static_cast<Index>(histograms.size());
+    detail::require(d > 0, "a model needs at least one feature histogram");
+    detail::validate(params, d);
+    for (Index j = 0; j < d; ++j) {
+      const Histogram<Scalar>& h = histograms[static_cast<std::size_t>(j)];
+      const FeatureSpec& spec = params.spec(j);
+      const bool equal_frequency = spec.binning.method == BinningMethod::EqualFrequency;
+      const HistogramParts<Scalar> p = h.parts();
+      Index counted = 0;
+      for (const Index c : p.counts) counted += c;
+      detail::require(counted == n_samples, "feature ", j, ": its histogram counts ", counted,
+                      " samples, the model ", n_samples);
+      detail::require(p.periodic == spec.periodic && p.tail == spec.tail, "feature ", j,
+                      ": its histogram's periodic/tail flags disagree with its spec");
+      detail::require(p.uniform == (spec.periodic || !equal_frequency), "feature ", j,
+                      ": its histogram's bins are ", p.uniform ? "uniform" : "irregular",
+                      " but its spec's binning is not");
+      detail::require(p.shifts == (equal_frequency ? 1 : spec.binning.shifts), "feature ", j,
+                      ": its histogram has ", p.shifts, " shifts, its spec ", spec.binning.shifts);
+    }
+    Hbos model;
+    model.histograms_ = std::move(histograms);
+    model.params_ = params;
+    model.n_samples_ = n_samples;
+    return model;
+  }
+
  private:
   Hbos() = default;
+
+  static void check_shape(const Scalar* data, Index rows, Index cols) {
+    detail::require(rows >= 0 && cols >= 0, "row-major buffer shape must be non-negative, got ",
+                    rows, " x ", cols);
+    detail::require(data != nullptr || rows == 0 || cols == 0, "row-major buffer is null");
+  }
 
   template <class Derived>
   void check_input(const Eigen::DenseBase<Derived>& x) const {

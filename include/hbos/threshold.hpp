@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "hbos/detail/numpy.hpp"
+#include "hbos/detail/scaling.hpp"
 #include "hbos/error.hpp"
 
 namespace hbos {
@@ -113,8 +114,13 @@ typename Derived::Scalar compute_threshold(const Eigen::DenseBase<Derived>& scor
   if (const auto* r = std::get_if<AdaptiveRange>(&rule)) {
     const Scalar lo = scores.minCoeff();
     const Scalar hi = scores.maxCoeff();
-    return static_cast<Scalar>(r->range_alpha * static_cast<double>(hi - lo) +
-                               static_cast<double>(lo));
+    const double range = static_cast<double>(hi - lo);
+    if (std::isfinite(range)) {
+      return static_cast<Scalar>(r->range_alpha * range + static_cast<double>(lo));
+    }
+    // A score range beyond Scalar's (-1e308 and 1e308): the same point, as a weighted mean.
+    return detail::saturate_cast<Scalar>((1.0 - r->range_alpha) * static_cast<double>(lo) +
+                                         r->range_alpha * static_cast<double>(hi));
   }
   if (const auto* r = std::get_if<Contamination>(&rule)) {
     // PyOD: percentile(scores, 100 * (1 - c)); numpy divides by 100 again, which is exact for
@@ -129,10 +135,13 @@ typename Derived::Scalar compute_threshold(const Eigen::DenseBase<Derived>& scor
     for (Eigen::Index i = 0; i < n; ++i) data[i] = std::abs(data[i] - median);
     const Scalar mad = detail::median_inplace(data, data + n);
     const double scale = r->scale_to_sigma ? 1.4826 : 1.0;
-    return static_cast<Scalar>(static_cast<double>(median) +
-                               r->k * scale * static_cast<double>(mad));
+    // Saturated: a cut-off beyond the largest Scalar (huge k or MAD) keeps every finite score,
+    // as the largest Scalar does; converting it would be undefined behaviour.
+    // A MAD of 0 adds nothing, even for a k whose product with the scale overflows (inf * 0).
+    const double spread = mad == Scalar(0) ? 0.0 : r->k * scale * static_cast<double>(mad);
+    return detail::saturate_cast<Scalar>(static_cast<double>(median) + spread);
   }
-  return static_cast<Scalar>(std::get<FixedThreshold>(rule).value);
+  return detail::saturate_cast<Scalar>(std::get<FixedThreshold>(rule).value);
 }
 
 /// Writes `inlier[i] = scores[i] <= threshold` and returns the inlier count. No allocation.

@@ -57,6 +57,8 @@ class Workspace {
   /// Grows every buffer for frames up to `rows` x `cols` and `bins` bins per feature, so that
   /// even the first `run` of that size does not allocate.
   void reserve(Index rows, Index cols, Index bins = 1024) {
+    detail::require(rows >= 0 && cols >= 0, "Workspace::reserve: rows and cols must be >= 0, got ",
+                    rows, " x ", cols);
     const auto n = static_cast<std::size_t>(rows);
     const auto d = static_cast<std::size_t>(cols);
     contributions_.reserve(n * d);

@@ -24,8 +24,13 @@ template <class T>
 
 /// numpy's `_lerp(a, b, t)`: a + (b - a) t, evaluated from the upper end, b - (b - a)(1 - t), when
 /// t >= 0.5 (so t = 1 gives b exactly).
+/// Where b - a overflows (a = -1e308, b = 1e308; numpy returns inf there) the same formula runs
+/// on halves, exactly scaled back: the interpolant always lies in [a, b].
 [[nodiscard]] inline double numpy_lerp(double a, double b, double t) {
   const double diff = b - a;
+  if (!std::isfinite(diff) && std::isfinite(a) && std::isfinite(b)) {
+    return 2.0 * numpy_lerp(a * 0.5, b * 0.5, t);
+  }
   return t >= 0.5 ? b - mul_rounded(diff, 1.0 - t) : a + mul_rounded(diff, t);
 }
 

@@ -53,12 +53,16 @@ namespace hbos {
 
 /// PyOD's `HBOS(n_bins, alpha, tol, contamination)`. Defaults are PyOD's.
 struct PyodParams {
-  Eigen::Index n_bins = 10;  ///< bins per feature (PyOD's integer `n_bins`), > 2
+  Eigen::Index n_bins = 10;  ///< bins per feature (PyOD's integer `n_bins`), in [3, kMaxPyodBins]
   bool auto_bins = false;  ///< PyOD's `n_bins="auto"`: Birgé–Rozenblac per feature, needs n > 3
   double alpha = 0.1;      ///< added to each density before log2, in (0, 1) [1/feature-unit]
   double tol = 0.5;        ///< how far outside the range still uses the edge bin, in (0, 1) [bins]
   double contamination = 0.1;  ///< share of training samples labelled outliers, in (0, 0.5]
 };
+
+/// The largest PyodParams::n_bins: 2^24 bins (about 1 GB per feature). PyOD has no bound; 2^32
+/// would ask for 34 GB.
+inline constexpr Eigen::Index kMaxPyodBins = Eigen::Index{1} << 24;
 
 /// The branch PyOD's scorer takes for one value (see PyodHbos, step 5).
 enum class PyodBranch {
@@ -115,6 +119,8 @@ inline void validate(const PyodParams& p) {
   if (!p.auto_bins) {
     require(p.n_bins > 2, "PyodParams::n_bins must be > 2 (PyOD rejects n_bins <= 2), got ",
             p.n_bins);
+    require(p.n_bins <= kMaxPyodBins, "PyodParams::n_bins must be <= ", kMaxPyodBins,
+            " (2^24), got ", p.n_bins);
   }
   require(p.alpha > 0.0 && p.alpha < 1.0,
           "PyodParams::alpha must lie in the open interval (0, 1), got ", p.alpha);
@@ -261,6 +267,68 @@ class PyodHbos {
   }
   [[nodiscard]] const PyodParams& params() const { return params_; }
 
+  /// Assembles a fitted model from what a model file stores (hbos/pyod/model_file.hpp): per
+  /// feature its B_j + 1 edges and B_j counts, the parameters and the training scores. Each
+  /// feature is refitted on a column holding counts[k] copies of edges[k] with the range
+  /// [e_0, e_B] (numpy's edges of that range are the stored ones), so densities and look-up
+  /// tables come from the code `fit` uses and the model scores bit for bit like the one the
+  /// parts came from; the threshold and labels are recomputed from the training scores.
+  /// \throws InvalidArgument naming the feature whose parts are inconsistent.
+  [[nodiscard]] static PyodHbos from_parts(const std::vector<Eigen::VectorXd>& edges,
+                                           const std::vector<Counts>& counts,
+                                           const PyodParams& params, Vector training_scores) {
+    detail::validate(params);
+    const auto d = static_cast<Eigen::Index>(edges.size());
+    const Eigen::Index n = training_scores.size();
+    detail::require(d >= 1 && counts.size() == edges.size(), "a model needs edges and counts for ",
+                    "each of at least one feature, got ", edges.size(), " and ", counts.size());
+    detail::require(n >= 1 && (!params.auto_bins || n > 3), "a model of ", n,
+                    " training samples is not one PyOD fits");
+    for (Eigen::Index i = 0; i < n; ++i)
+      detail::require(std::isfinite(training_scores[i]), "training score ", i, " is not finite (",
+                      training_scores[i], ")");
+    PyodHbos model;
+    model.params_ = params;
+    std::vector<Scalar> column(static_cast<std::size_t>(n));
+    std::vector<std::uint16_t> scored_bins(static_cast<std::size_t>(n));
+    for (Eigen::Index j = 0; j < d; ++j) {
+      const Eigen::VectorXd& e = edges[static_cast<std::size_t>(j)];
+      const Counts& c = counts[static_cast<std::size_t>(j)];
+      const Eigen::Index B = c.size();
+      detail::require(B >= 1 && e.size() == B + 1, "feature ", j, ": ", e.size(), " edges for ", B,
+                      " bins");
+      detail::require(params.auto_bins || B == params.n_bins, "feature ", j, ": ", B,
+                      " bins but n_bins = ", params.n_bins);
+      detail::require(e.allFinite(), "feature ", j, ": an edge is not finite");
+      Eigen::Index filled = 0;
+      for (Eigen::Index k = 0; k < B; ++k) {
+        detail::require(c[k] >= 0 && c[k] <= n - filled, "feature ", j, ": counts[", k,
+                        "] = ", c[k], " is negative or exceeds the ", n, " training samples");
+        // The smallest Scalar >= e_k: in bin k whenever bin k holds a Scalar training value.
+        auto value = static_cast<Scalar>(e[k]);
+        if (static_cast<double>(value) < e[k])
+          value = std::nextafter(value, std::numeric_limits<Scalar>::infinity());
+        std::fill_n(column.begin() + filled, c[k], value);
+        filled += c[k];
+      }
+      detail::require(filled == n, "feature ", j, ": the counts add up to ", filled,
+                      ", not to the ", n, " training samples");
+      Feature f = fit_feature(column.data(), 1, n, j, B, e[0], e[B], params, scored_bins.data());
+      detail::require(f.edges == e, "feature ", j,
+                      ": the edges are not numpy's edges of their range [", e[0], ", ", e[B], "]");
+      detail::require(f.counts == c, "feature ", j,
+                      ": the counts do not match the edges (a value placed at edges[k] is not ",
+                      "counted in bin k)");
+      model.features_.push_back(std::move(f));
+    }
+    std::vector<Scalar> percentile_scratch;
+    model.threshold_ =
+        detail::pyod_threshold(training_scores.data(), n, params.contamination, percentile_scratch);
+    model.scores_ = std::move(training_scores);
+    model.labels_ = model.label(model.scores_);
+    return model;
+  }
+
  private:
   using View = detail::StridedView<Scalar>;
 
@@ -386,6 +454,8 @@ class PyodHbos {
         finite = nans == 0;
       }
       if (!finite) detail::require_finite_entry(X, "X");
+      // Checked before the auto search too, which would bucket an infinite range.
+      require_finite_range(j, lo, hi);
       const Eigen::Index B =
           params.auto_bins ? detail::pyod_optimal_bins(column, X.row_stride, n, lo, hi, scratch)
                            : params.n_bins;
@@ -421,6 +491,16 @@ class PyodHbos {
 
   static constexpr Eigen::Index kMaxStoredBins = 65536;
 
+  /// numpy's histogram range of feature j, which must not overflow a double (numpy's bins of
+  /// width inf would give NaN and the auto search a negative cell count).
+  static detail::OuterEdges require_finite_range(Eigen::Index j, double min_value,
+                                                 double max_value) {
+    const detail::OuterEdges range = detail::numpy_outer_edges(min_value, max_value);
+    detail::require(std::isfinite(range.hi - range.lo), "feature ", j, ": its range [", range.lo,
+                    ", ", range.hi, "] overflows a double");
+    return range;
+  }
+
   /// numpy.histogram(column, B, density=True) plus the scoring tables. Writes the bin each value
   /// is scored with (which differs from the bin it is counted in for values on interior edges),
   /// truncated to 16 bits: meaningful only when B <= kMaxStoredBins.
@@ -428,9 +508,7 @@ class PyodHbos {
                                            Eigen::Index n, Eigen::Index j, Eigen::Index B,
                                            double min_value, double max_value,
                                            const PyodParams& params, std::uint16_t* scored_bins) {
-    const detail::OuterEdges range = detail::numpy_outer_edges(min_value, max_value);
-    detail::require(std::isfinite(range.hi - range.lo), "feature ", j, ": its range [", range.lo,
-                    ", ", range.hi, "] overflows a double");
+    const detail::OuterEdges range = require_finite_range(j, min_value, max_value);
     Feature f;
     f.edges.resize(B + 1);
     detail::numpy_histogram_edges(range, B, f.edges.data());
@@ -520,6 +598,11 @@ class PyodHbos {
       // numpy's n / db / n.sum(): each bin's own width first (widths differ by ULPs), then n.
       f.densities[k] = static_cast<double>(f.counts[k]) / (f.edges[k + 1] - f.edges[k]) / n_double;
       f.log_terms[k] = std::log2(f.densities[k] + params.alpha);
+      // Bins of subnormal width: the density overflows and PyOD would score -inf; refuse.
+      detail::require(std::isfinite(f.densities[k]), "feature ", j, ": bin ", k, " of width ",
+                      f.edges[k + 1] - f.edges[k], " holds ", f.counts[k],
+                      " samples, a density that overflows a double (PyOD would score -inf); "
+                      "rescale the feature");
     }
     f.log_min = f.log_terms.minCoeff(&f.sparsest);
     f.tol_below = (f.edges[1] - f.edges[0]) * params.tol;

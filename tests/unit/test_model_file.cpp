@@ -1,0 +1,402 @@
+// Tests of hbos/model_file.hpp (and Histogram::parts/from_parts, Hbos::from_histograms): a saved
+// and loaded model scores bit for bit like the original under every mode, binning, tail and
+// periodic spec; damaged files are refused with the line and field named; saving is atomic.
+
+#include <hbos/model_file.hpp>
+#include <hbos/pyod/model_file.hpp>
+
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <string>
+#include <tuple>
+#include <vector>
+
+namespace {
+
+template <class Scalar>
+using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
+
+/// Three features of different shapes, an integer-valued one (ties on edges) and an angle.
+template <class Scalar>
+Matrix<Scalar> make_data(std::uint32_t seed, Eigen::Index n) {
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> normal;
+  std::exponential_distribution<double> expo(0.5);
+  std::uniform_int_distribution<int> dice(0, 6);
+  std::uniform_real_distribution<double> angle(-10.0, 10.0);
+  Matrix<Scalar> x(n, 4);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    x(i, 0) = static_cast<Scalar>(normal(rng) * 4.0 + 100.0);
+    x(i, 1) = static_cast<Scalar>(expo(rng));
+    x(i, 2) = static_cast<Scalar>(dice(rng));
+    x(i, 3) = static_cast<Scalar>(angle(rng));
+  }
+  return x;
+}
+
+/// Data to score: the training rows, shifted copies reaching outside the fitted range.
+template <class Scalar>
+Matrix<Scalar> make_queries(const Matrix<Scalar>& train) {
+  Matrix<Scalar> q(3 * train.rows(), train.cols());
+  q << train, (train.array() * Scalar(1.3)).matrix(), (train.array() - Scalar(2.5)).matrix();
+  return q;
+}
+
+/// Every spec the format has to carry: named, so a failure says which one.
+std::vector<std::pair<std::string, hbos::HbosParams>> all_modes() {
+  std::vector<std::pair<std::string, hbos::HbosParams>> modes;
+  modes.emplace_back("default (5 bins x 5 shifts)", hbos::HbosParams{});
+  hbos::HbosParams p;
+  p.feature.binning.shifts = 1;
+  p.feature.binning.bins = 10;
+  modes.emplace_back("classic static 10", p);
+  using Rule = hbos::BinCountRule;
+  for (const auto& [name, rule] :
+       std::vector<std::pair<std::string, Rule>>{{"sqrt", Rule::Sqrt},
+                                                 {"sturges", Rule::Sturges},
+                                                 {"scott", Rule::Scott},
+                                                 {"freedman-diaconis", Rule::FreedmanDiaconis},
+                                                 {"birge-rozenblac", Rule::BirgeRozenblac}}) {
+    p = {};
+    p.feature.binning.rule = rule;
+    modes.emplace_back("equal width, " + name, p);
+    p.feature.binning.method = hbos::BinningMethod::EqualFrequency;
+    modes.emplace_back("equal frequency, " + name, p);
+  }
+  p = {};
+  p.feature.binning.method = hbos::BinningMethod::EqualFrequency;
+  p.feature.binning.bins = 7;
+  modes.emplace_back("equal frequency, 7", p);
+  p = {};
+  p.feature.binning.method = hbos::BinningMethod::FixedWidth;
+  p.feature.binning.width = 0.25;
+  p.feature.binning.origin = 0.1;
+  p.feature.binning.shifts = 3;
+  modes.emplace_back("fixed width 0.25 x 3 shifts", p);
+  p = {};
+  p.feature.tail = hbos::Tail::Upper;
+  modes.emplace_back("upper tail", p);
+  p.feature.tail = hbos::Tail::Lower;
+  p.scoring.empty_bin_count = 0.25;
+  p.scoring.range_tolerance = 1.5;
+  modes.emplace_back("lower tail, other scoring options", p);
+  // Per-feature specs: a tail, a fixed width, dynamic bins and an angle (periodic ASH).
+  p = {};
+  p.features.resize(4);
+  p.features[0].tail = hbos::Tail::Upper;
+  p.features[1].binning.method = hbos::BinningMethod::FixedWidth;
+  p.features[1].binning.width = 0.5;
+  p.features[2].binning.method = hbos::BinningMethod::EqualFrequency;
+  p.features[3] = hbos::angle_feature(12);
+  p.features[3].binning.shifts = 3;
+  modes.emplace_back("per-feature specs with a periodic feature", p);
+  p.features[3] = hbos::angle_feature(8);
+  p.features[3].binning.method = hbos::BinningMethod::FixedWidth;
+  p.features[3].binning.width = 0.7;
+  modes.emplace_back("periodic fixed width", p);
+  return modes;
+}
+
+template <class Scalar, int Rows, int Cols>
+bool same_bits(const Eigen::Matrix<Scalar, Rows, Cols>& a,
+               const Eigen::Matrix<Scalar, Rows, Cols>& b) {
+  return a.rows() == b.rows() && a.cols() == b.cols() &&
+         std::memcmp(a.data(), b.data(), sizeof(Scalar) * static_cast<std::size_t>(a.size())) == 0;
+}
+
+template <class Scalar>
+void check_round_trip(const Matrix<Scalar>& x, const hbos::HbosParams& params) {
+  const auto model = hbos::Hbos<Scalar>::fit(x, params);
+  const std::string text = hbos::to_model_text(model);
+  const auto loaded = hbos::hbos_from_model_text<Scalar>(text);
+  const Matrix<Scalar> q = make_queries(x);
+  CHECK(same_bits(model.score(q), loaded.score(q)));
+  CHECK(same_bits(model.contributions(q), loaded.contributions(q)));
+  CHECK(loaded.n_samples() == model.n_samples());
+  CHECK(loaded.params().features.size() == model.params().features.size());
+  for (Eigen::Index j = 0; j < model.n_features(); ++j) {
+    CHECK(loaded.histogram(j).bin_contributions() == model.histogram(j).bin_contributions());
+    CHECK(loaded.histogram(j).cap() == model.histogram(j).cap());
+    CHECK(loaded.histogram(j).mode() == model.histogram(j).mode());
+  }
+  // Writing the loaded model gives the same text: nothing is lost or re-rounded.
+  CHECK(hbos::to_model_text(loaded) == text);
+}
+
+std::string temp_path(const std::string& name) {
+  const auto dir = std::filesystem::temp_directory_path() / "hbos_test_model_file";
+  std::filesystem::create_directories(dir);
+  return (dir / name).string();
+}
+
+/// The text of a small fitted model, to damage.
+std::string sample_text() {
+  hbos::HbosParams p;
+  p.feature.binning.shifts = 1;
+  p.feature.binning.bins = 3;
+  return hbos::to_model_text(hbos::Hbosd::fit(make_data<double>(5, 50).leftCols(2), p));
+}
+
+/// `text` with the line starting with `key` replaced by `replacement`.
+std::string replace_line(const std::string& text, const std::string& key,
+                         const std::string& replacement) {
+  const std::size_t at = text.find("\n" + key + " ");
+  REQUIRE(at != std::string::npos);
+  const std::size_t end = text.find('\n', at + 1);
+  return text.substr(0, at + 1) + replacement + text.substr(end);
+}
+
+/// Loading `text` fails with a message containing every one of `parts`.
+void check_refused(const std::string& text, const std::vector<std::string>& parts) {
+  try {
+    (void)hbos::hbos_from_model_text<double>(text, "m.txt");
+    FAIL("accepted a damaged model file");
+  } catch (const hbos::InvalidArgument& e) {
+    const std::string what = e.what();
+    for (const auto& part : parts) {
+      INFO(what);
+      CHECK(what.find(part) != std::string::npos);
+    }
+  }
+}
+
+}  // namespace
+
+TEST_CASE("a loaded model scores bit for bit like the saved one, every mode", "[model_file]") {
+  for (const auto& [name, params] : all_modes()) {
+    SECTION(name) {
+      for (std::uint32_t seed = 1; seed <= 3; ++seed) {
+        check_round_trip(make_data<double>(seed, 300 + 71 * seed), params);
+        check_round_trip(make_data<float>(seed, 300 + 71 * seed), params);
+      }
+    }
+  }
+}
+
+TEST_CASE("a constant feature and a single row round-trip", "[model_file]") {
+  Eigen::MatrixXd x(40, 2);
+  x.col(0).setConstant(3.5);
+  x.col(1).setLinSpaced(40, -1.0, 1.0);
+  check_round_trip<double>(x, {});
+  hbos::HbosParams dynamic;
+  dynamic.feature.binning.method = hbos::BinningMethod::EqualFrequency;
+  check_round_trip<double>(x, dynamic);
+  check_round_trip<double>(x.topRows(1), {});
+  // A range that overflows a double is binned in scaled form (EdgeLayout::scale != 1).
+  for (Eigen::Index i = 0; i < x.rows(); ++i) {
+    const double t = static_cast<double>(i * i) / 1521.0;
+    x(i, 0) = 1.7e308 * t - 1.5e308 * (1.0 - t);
+  }
+  const auto extreme = hbos::Hbosd::fit(x);
+  REQUIRE(extreme.histogram(0).parts().scale != 1.0);
+  const auto loaded = hbos::hbos_from_model_text<double>(hbos::to_model_text(extreme));
+  CHECK(same_bits(loaded.score(x), extreme.score(x)));
+  CHECK(hbos::to_model_text(loaded) == hbos::to_model_text(extreme));
+}
+
+TEST_CASE("save_model writes atomically and load_hbos reads it back", "[model_file]") {
+  const Eigen::MatrixXd x = make_data<double>(9, 500);
+  const auto model = hbos::Hbosd::fit(x);
+  const std::string path = temp_path("model.hbos");
+  std::filesystem::remove(path);
+  hbos::save_model(model, path);
+  // Replacing an existing file leaves only the new one, and no temporary file behind.
+  const auto other = hbos::Hbosd::fit(x.topRows(100));
+  hbos::save_model(other, path);
+  std::size_t files = 0;
+  for (const auto& entry :
+       std::filesystem::directory_iterator(std::filesystem::path(path).parent_path())) {
+    (void)entry;
+    ++files;
+  }
+  CHECK(files == 1);
+  const auto loaded = hbos::load_hbos<double>(path);
+  CHECK(same_bits(loaded.score(x), other.score(x)));
+  const hbos::ModelFileInfo info = hbos::read_model_info(path);
+  CHECK(info.version == hbos::kModelFileVersion);
+  CHECK(info.kind == "hbos");
+  CHECK(info.scalar == "double");
+  CHECK_THROWS_WITH(hbos::load_hbos<float>(path),
+                    Catch::Contains("load it with load_hbos<double>"));
+  CHECK_THROWS_WITH(hbos::load_hbos<double>(temp_path("missing.hbos")),
+                    Catch::Contains("cannot open model file"));
+  CHECK_THROWS_WITH(hbos::save_model(model, temp_path("no/such/dir/m.hbos")),
+                    Catch::Contains("m.hbos"));
+  std::filesystem::remove(path);
+}
+
+TEST_CASE("damaged model files are refused naming the line and the field", "[model_file]") {
+  const std::string text = sample_text();
+  REQUIRE_NOTHROW(hbos::hbos_from_model_text<double>(text));
+  check_refused("", {"m.txt", "hbos-model-file", "truncated"});
+  check_refused("not a model\n", {"line 1", "hbos-model-file"});
+  check_refused(replace_line("x\n" + text.substr(text.find('\n') + 1), "kind", "kind hbos"),
+                {"line 1"});
+  std::string v2 = text;
+  v2.replace(0, v2.find('\n'), "hbos-model-file 2");
+  check_refused(v2, {"line 1", "unsupported format version 2"});
+  check_refused(replace_line(text, "kind", "kind pyod"), {"load_pyod_hbos"});
+  check_refused(replace_line(text, "scalar", "scalar half"), {"line 3", "'half'"});
+  check_refused(text.substr(0, text.size() / 2), {"m.txt"});
+  check_refused(text + "extra\n", {"unexpected content", "extra"});
+  check_refused(replace_line(text, "n_features", "n_features 0"), {"line 4", "n_features"});
+  check_refused(replace_line(text, "n_samples", "n_samples 49"), {"counts 50", "49"});
+  check_refused(replace_line(text, "hist.lo", "hist.lo nan"), {"hist.lo", "not finite"});
+  check_refused(replace_line(text, "hist.lo", "hist.lo inf"), {"hist.lo", "not finite"});
+  check_refused(replace_line(text, "hist.lo", "hist.lo 1.5x"), {"hist.lo", "'1.5x'"});
+  check_refused(replace_line(text, "hist.lo", "hist.low 1"), {"expected a line starting with"});
+  check_refused(replace_line(text, "hist.lo", "hist.lo 1e400"), {"out of range"});
+  check_refused(replace_line(text, "hist.edges", "hist.edges 4 0 2 1 3"),
+                {"feature 0", "not ascending"});
+  check_refused(replace_line(text, "hist.edges", "hist.edges 3 0 1 2"), {"edges has 3 values"});
+  check_refused(replace_line(text, "hist.edges", "hist.edges 5 0 1 2"), {"declares 5 values"});
+  check_refused(replace_line(text, "hist.counts", "hist.counts 3 60 -5 -5"),
+                {"feature 0", "counts[1] is negative"});
+  check_refused(replace_line(text, "hist.inv_width", "hist.inv_width 1e30"),
+                {"feature 0", "inv_width"});
+  check_refused(replace_line(text, "hist.shifts", "hist.shifts 2"), {"shifts"});
+  check_refused(replace_line(text, "hist.tail", "hist.tail sideways"), {"'sideways'", "both"});
+  check_refused(replace_line(text, "spec.bins", "spec.bins 0"), {"spec", "bin count must be >= 1"});
+  check_refused(replace_line(text, "spec.periodic", "spec.periodic 2"), {"not 0 or 1"});
+  check_refused(replace_line(text, "scoring.empty_bin_count", "scoring.empty_bin_count 2"),
+                {"line 7", "empty_bin_count"});
+  check_refused(replace_line(text, "feature", "feature 1"), {"expected feature 0"});
+}
+
+TEST_CASE("Hbos::from_histograms refuses histograms that disagree with the spec", "[model_file]") {
+  const Eigen::MatrixXd x = make_data<double>(3, 200);
+  const auto model = hbos::Hbosd::fit(x);
+  std::vector<hbos::Histogram<double>> histograms;
+  for (Eigen::Index j = 0; j < model.n_features(); ++j) histograms.push_back(model.histogram(j));
+  CHECK_NOTHROW(hbos::Hbosd::from_histograms(histograms, model.params(), 200));
+  CHECK_THROWS_WITH(hbos::Hbosd::from_histograms(histograms, model.params(), 199),
+                    Catch::Contains("counts 200 samples"));
+  hbos::HbosParams plain;
+  plain.feature.binning.shifts = 1;
+  CHECK_THROWS_WITH(hbos::Hbosd::from_histograms(histograms, plain, 200),
+                    Catch::Contains("shifts"));
+  CHECK_THROWS_WITH(hbos::Hbosd::from_histograms({}, model.params(), 200),
+                    Catch::Contains("at least one feature"));
+}
+
+// ---- the PyOD mode (hbos/pyod/model_file.hpp) ----------------------------------------------
+
+namespace {
+
+const std::string kPyodDir = std::string(HBOS_TEST_DATA_DIR) + "/hbos_pyod/";
+
+Eigen::MatrixXd read_csv(const std::string& path) {
+  std::ifstream in(path);
+  REQUIRE(in.good());
+  std::vector<std::vector<double>> rows;
+  std::string line;
+  while (std::getline(in, line)) {
+    std::vector<double> row;
+    std::size_t start = 0;
+    while (start <= line.size()) {
+      const std::size_t end = std::min(line.find(',', start), line.size());
+      row.push_back(std::stod(line.substr(start, end - start)));
+      start = end + 1;
+    }
+    rows.push_back(row);
+  }
+  Eigen::MatrixXd x(static_cast<Eigen::Index>(rows.size()),
+                    static_cast<Eigen::Index>(rows.front().size()));
+  for (Eigen::Index i = 0; i < x.rows(); ++i)
+    for (Eigen::Index j = 0; j < x.cols(); ++j)
+      x(i, j) = rows[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)];
+  return x;
+}
+
+template <class Scalar>
+void check_pyod_round_trip(const Eigen::MatrixXd& x, const Eigen::MatrixXd& x_test,
+                           const hbos::PyodParams& params) {
+  const Matrix<Scalar> xs = x.cast<Scalar>();
+  const Matrix<Scalar> ts = x_test.cast<Scalar>();
+  const auto model = hbos::PyodHbos<Scalar>::fit(xs, params);
+  const std::string text = hbos::to_model_text(model);
+  const auto loaded = hbos::pyod_hbos_from_model_text<Scalar>(text);
+  CHECK(same_bits(model.decision_function(ts), loaded.decision_function(ts)));
+  CHECK(same_bits(model.decision_scores(), loaded.decision_scores()));
+  CHECK(model.threshold() == loaded.threshold());
+  CHECK(model.labels() == loaded.labels());
+  CHECK(model.predict(ts) == loaded.predict(ts));
+  for (Eigen::Index j = 0; j < model.n_features(); ++j) {
+    CHECK(model.densities(j) == loaded.densities(j));
+    CHECK(model.bin_edges(j) == loaded.bin_edges(j));
+  }
+  CHECK(hbos::to_model_text(loaded) == text);
+}
+
+}  // namespace
+
+TEST_CASE("a loaded PyOD-mode model scores bit for bit like the saved one", "[model_file][pyod]") {
+  for (const std::string name : {"cardio", "glass", "lympho", "pima", "vertebral", "wbc"}) {
+    const Eigen::MatrixXd x = read_csv(kPyodDir + name + "/X.csv");
+    const Eigen::MatrixXd x_test = read_csv(kPyodDir + name + "/X_test.csv");
+    hbos::PyodParams p;
+    for (const auto& [bins, alpha, tol] : std::vector<std::tuple<int, double, double>>{
+             {10, 0.1, 0.5}, {5, 0.1, 0.5}, {20, 0.01, 0.2}, {0, 0.1, 0.5}}) {
+      p.auto_bins = bins == 0;
+      p.n_bins = bins == 0 ? 10 : bins;
+      p.alpha = alpha;
+      p.tol = tol;
+      INFO(name << " n_bins " << bins);
+      check_pyod_round_trip<double>(x, x_test, p);
+      check_pyod_round_trip<float>(x, x_test, p);
+    }
+  }
+}
+
+TEST_CASE("a loaded PyOD-mode model still reproduces PyOD's test scores", "[model_file][pyod]") {
+  const Eigen::MatrixXd x = read_csv(kPyodDir + "cardio/X.csv");
+  const Eigen::MatrixXd x_test = read_csv(kPyodDir + "cardio/X_test.csv");
+  const Eigen::MatrixXd expected = read_csv(kPyodDir + "cardio/test_scores_nb10_a0.1_tol0.5.csv");
+  const std::string path = temp_path("cardio.pyod");
+  hbos::save_model(hbos::PyodHbosd::fit(x), path);
+  CHECK(hbos::read_model_info(path).kind == "pyod");
+  const auto loaded = hbos::load_pyod_hbos<double>(path);
+  const Eigen::VectorXd scores = loaded.decision_function(x_test);
+  CHECK(same_bits(scores, Eigen::VectorXd(expected.col(0))));
+  CHECK_THROWS_WITH(hbos::load_hbos<double>(path), Catch::Contains("load it with load_pyod_hbos"));
+  std::filesystem::remove(path);
+}
+
+TEST_CASE("damaged PyOD-mode model files are refused naming the line and the field",
+          "[model_file][pyod]") {
+  const std::string text = hbos::to_model_text(hbos::PyodHbosd::fit(make_data<double>(2, 60)));
+  REQUIRE_NOTHROW(hbos::pyod_hbos_from_model_text<double>(text));
+  auto refused = [](const std::string& damaged, const std::vector<std::string>& parts) {
+    try {
+      (void)hbos::pyod_hbos_from_model_text<double>(damaged, "p.txt");
+      FAIL("accepted a damaged model file");
+    } catch (const hbos::InvalidArgument& e) {
+      const std::string what = e.what();
+      for (const auto& part : parts) {
+        INFO(what);
+        CHECK(what.find(part) != std::string::npos);
+      }
+    }
+  };
+  refused(replace_line(text, "n_bins", "n_bins 2"), {"line 6", "n_bins must be > 2"});
+  refused(replace_line(text, "alpha", "alpha 1.5"), {"alpha must lie"});
+  refused(replace_line(text, "threshold", "threshold 99"), {"line 10", "threshold", "percentile"});
+  refused(replace_line(text, "edges", "edges 3 0 1 2"), {"line 13", "counts for 3 edges"});
+  const std::size_t edges_at = text.find("\nedges 11 ") + 10;
+  std::string shifted = text;
+  shifted.insert(edges_at, "-");  // a different first edge: not numpy's edges any more
+  refused(shifted, {"feature 0", "numpy's edges"});
+  refused(replace_line(text, "counts", "counts 10 59 0 0 0 0 0 0 0 0 0"),
+          {"feature 0", "add up to 59"});
+  refused(replace_line(text, "counts", "counts 10 58 -1 3 0 0 0 0 0 0 0"), {"counts[1] = -1"});
+  refused(text.substr(0, text.size() - 30), {"p.txt"});
+  const std::size_t scores_at = text.find("\ndecision_scores 60\n") + 20;
+  std::string bad_score = text;
+  bad_score.insert(scores_at, "x");
+  refused(bad_score, {"decision_scores", "not a number"});
+}
