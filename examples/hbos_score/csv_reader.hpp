@@ -28,6 +28,7 @@
 
 #include <Eigen/Core>
 #include <cstddef>
+#include <functional>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -55,34 +56,51 @@ struct CsvOptions {
   std::vector<std::string> ignore_columns{};
 };
 
-/// A numeric table read from CSV.
-struct CsvTable {
-  /// Rows = samples, columns = features (the label column removed), column-major.
-  Eigen::MatrixXd features;
+/// What the first line of a CSV file says about its columns (the part of a table that does not
+/// grow with its rows).
+struct CsvLayout {
   /// Names of every column of the file, in file order (`x<j>` where the file has no header or
   /// an empty header cell, j counting from 0).
   std::vector<std::string> column_names;
-  /// For each column of `features`, its index among `column_names`.
+  /// For each feature (a column that is neither the label nor ignored), its index among
+  /// `column_names`.
   std::vector<std::size_t> feature_columns;
   /// Index of the label column among `column_names`, if one was requested.
   std::optional<std::size_t> label_column;
   /// Indices of the ignored columns among `column_names`, in the order they were requested.
   std::vector<std::size_t> ignored_columns;
-  /// The labels (0 or 1, 1 = outlier), one per row; empty without a label column.
-  Eigen::VectorXi labels;
-  /// The line each row was read from (1-based), for messages about rows.
-  std::vector<std::size_t> row_lines;
   /// Whether the first line was taken as a header.
   bool has_header = false;
   /// Auto mode only: cells of the header line that look like numbers (a hint that the first line
   /// may be a corrupt data row rather than a header).
   std::vector<std::size_t> numeric_header_cells;
 
-  [[nodiscard]] Eigen::Index rows() const { return features.rows(); }
-  /// Name of feature j (a column of `features`).
+  [[nodiscard]] Eigen::Index n_features() const {
+    return static_cast<Eigen::Index>(feature_columns.size());
+  }
+  /// Name of feature j.
   [[nodiscard]] const std::string& feature_name(Eigen::Index j) const {
     return column_names[feature_columns[static_cast<std::size_t>(j)]];
   }
+};
+
+/// A numeric table read from CSV, whole.
+struct CsvTable : CsvLayout {
+  /// Rows = samples, columns = features (the label column removed), column-major.
+  Eigen::MatrixXd features;
+  /// The labels (0 or 1, 1 = outlier), one per row; empty without a label column.
+  Eigen::VectorXi labels;
+  /// The line each row was read from (1-based), for messages about rows.
+  std::vector<std::size_t> row_lines;
+
+  [[nodiscard]] Eigen::Index rows() const { return features.rows(); }
+};
+
+/// One data row as the streaming reader delivers it; valid only during the callback.
+struct CsvRow {
+  std::size_t line = 0;              ///< 1-based line of the file
+  const double* features = nullptr;  ///< CsvLayout::n_features() values, in feature order
+  int label = -1;                    ///< 0 or 1 with a label column, else -1
 };
 
 /// A malformed input: where it is and what is wrong. `what()` reads `source:line:column: message`
@@ -107,6 +125,25 @@ class CsvError : public std::runtime_error {
   std::string message_;
 };
 
+/// The streaming reader's callbacks: `on_layout` once, after the first line, then `on_row` for
+/// every data row in file order. Either may throw to stop the reading (the exception escapes).
+struct CsvHandlers {
+  std::function<void(const CsvLayout&)> on_layout;
+  std::function<void(const CsvRow&)> on_row;
+  /// Optional: after the last row, the layout is moved out (so that a caller keeping it need not
+  /// hold a second copy of the names of millions of columns while reading).
+  std::function<void(CsvLayout&&)> on_finish;
+};
+
+/// Streams CSV text row by row, with exactly the checks and messages of parse_csv. Memory: one
+/// row of doubles and the layout, whatever the number of rows.
+void parse_csv_rows(std::string_view text, const std::string& source, const CsvOptions& options,
+                    const CsvHandlers& handlers);
+
+/// Streams a file (`-`: standard input) row by row, reading it in 1 MiB blocks: the file is never
+/// held in memory whole. A line may be as long as memory allows. Errors as read_csv.
+void read_csv_rows(const std::string& path, const CsvOptions& options, const CsvHandlers& handlers);
+
 /// Parses CSV text. `source` names the input in error messages.
 /// \throws CsvError on malformed input; std::invalid_argument when `options.label_column` or
 ///         `options.ignore_columns` name no column, or `options.delimiter` is unusable.
@@ -114,7 +151,8 @@ class CsvError : public std::runtime_error {
                                  const CsvOptions& options = {});
 
 /// Reads and parses a file; `-` reads standard input (named `<stdin>` in messages).
-/// \throws as parse_csv, and CsvError (without position) when the file cannot be read.
+/// \throws as parse_csv, and CsvError (without position) when the file cannot be read, does not
+/// exist or is a directory.
 [[nodiscard]] CsvTable read_csv(const std::string& path, const CsvOptions& options = {});
 
 }  // namespace hbos::cli

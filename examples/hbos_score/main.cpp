@@ -13,12 +13,18 @@
 #include <cstdio>
 #include <map>
 #include <string>
+#include <string_view>
+#include <utility>
 #include <vector>
 
 #include "column_selector.hpp"
 #include "common/atomic_file.hpp"
+#include "common/cli_validators.hpp"
 #include "csv_reader.hpp"
+#include "fit_command.hpp"
 #include "results_csv.hpp"
+#include "score_command.hpp"
+#include "score_input.hpp"
 #include "score_options.hpp"
 #include "scoring.hpp"
 #include "summary.hpp"
@@ -80,11 +86,14 @@ char parse_delimiter(const std::string& text) {
 }
 
 int run(const ScoreOptions& options) {
-  const CsvTable table = read_csv(options.input, options.csv);
-  const ScoredTable scored = score_table(options, table);
-  hbos::examples::write_file_atomically(options.output,
-                                        format_results(scored, table, options.contributions));
-  if (!options.quiet) std::fputs(format_summary(options, table, scored).c_str(), stderr);
+  ScoreInput input = read_score_input(options.input, options.csv);
+  // The values become the contributions in place: the data is held once, start to end.
+  const ScoredTable scored = score_table(options, input, std::move(input.values));
+  hbos::examples::AtomicFile output(options.output);
+  format_results(scored, input, options.contributions,
+                 [&](std::string_view piece) { output.write(piece); });
+  output.commit();
+  if (!options.quiet) std::fputs(format_summary(options, input, scored).c_str(), stderr);
   return 0;
 }
 
@@ -180,7 +189,7 @@ int score_main(int argc, char** argv) {
   app.add_flag("--contributions", options.contributions,
                "also write each feature's contribution to the score (contrib_<feature> columns)");
   app.add_option("--top", options.top, "rows listed in the summary, highest scores first")
-      ->check(CLI::NonNegativeNumber)
+      ->check(hbos::examples::non_negative_number())
       ->capture_default_str();
   app.add_flag("-q,--quiet", options.quiet, "no summary on standard error");
 
@@ -233,6 +242,11 @@ int score_main(int argc, char** argv) {
 
 int main(int argc, char** argv) {
   try {
+    // Subcommands with model files (fit_command.hpp, score_command.hpp); anything else is the
+    // one-shot scorer (a data file named `fit` or `score` is then passed as ./fit).
+    const std::string_view command = argc > 1 ? argv[1] : "";
+    if (command == "fit") return hbos::cli::fit_command(argc - 1, argv + 1);
+    if (command == "score") return hbos::cli::score_command(argc - 1, argv + 1);
     return score_main(argc, argv);
   } catch (const std::exception& e) {  // e.g. out of memory while setting up the parser
     std::fprintf(stderr, "hbos-score: error: %s\n", e.what());

@@ -22,14 +22,16 @@ std::string csv_cell(const std::string& text) {
 
 }  // namespace
 
-std::string format_results(const ScoredTable& scored, const CsvTable& table, bool contributions) {
+void format_results(const ScoredTable& scored, const CsvLayout& layout, bool contributions,
+                    const TextSink& sink) {
+  constexpr std::size_t kPiece = std::size_t{1} << 20;
   fmt::memory_buffer out;
   auto put = std::back_inserter(out);
   fmt::format_to(put, "score,label");
-  const Eigen::Index d = table.features.cols();
+  const Eigen::Index d = layout.n_features();
   if (contributions) {
     for (Eigen::Index j = 0; j < d; ++j)
-      fmt::format_to(put, ",{}", csv_cell("contrib_" + table.feature_name(j)));
+      fmt::format_to(put, ",{}", csv_cell("contrib_" + layout.feature_name(j)));
   }
   fmt::format_to(put, "\n");
   for (Eigen::Index i = 0; i < scored.scores.size(); ++i) {
@@ -41,8 +43,12 @@ std::string format_results(const ScoredTable& scored, const CsvTable& table, boo
         fmt::format_to(put, ",{}", scored.contributions(i, j) + 0.0);
     }
     fmt::format_to(put, "\n");
+    if (out.size() >= kPiece) {
+      sink(std::string_view(out.data(), out.size()));
+      out.clear();
+    }
   }
-  return fmt::to_string(out);
+  sink(std::string_view(out.data(), out.size()));
 }
 
 }  // namespace hbos::cli

@@ -188,7 +188,7 @@ void check_combinations(const ScoreOptions& o) {
     reject(fmt::format("--period must be > 0, got {}", *o.period));
 }
 
-HbosParams make_params(const ScoreOptions& o, const CsvTable& table) {
+HbosParams make_params(const ScoreOptions& o, const CsvLayout& table) {
   HbosParams params;  // feature = default_feature(): 5 equal-width bins x 5 shifts
   Binning& b = params.feature.binning;
   if (o.binning) b.method = *o.binning;

@@ -82,7 +82,7 @@ void check_combinations(const ScoreOptions& options);
 
 /// The default mode's parameters for `table` (periodic columns resolved against its columns).
 /// \throws std::invalid_argument when a periodic column is unknown or is the label column.
-[[nodiscard]] HbosParams make_params(const ScoreOptions& options, const CsvTable& table);
+[[nodiscard]] HbosParams make_params(const ScoreOptions& options, const CsvLayout& table);
 
 /// The PyOD mode's parameters.
 [[nodiscard]] PyodParams make_pyod_params(const ScoreOptions& options);

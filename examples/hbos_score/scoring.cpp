@@ -4,7 +4,10 @@
 
 #include <hbos/model.hpp>
 #include <hbos/pyod.hpp>
+#include <hbos/pyod/detail/numpy_replica.hpp>
 #include <hbos/threshold.hpp>
+
+#include <utility>
 
 namespace hbos::cli {
 namespace {
@@ -23,7 +26,7 @@ std::string describe(const FeatureSpec& spec) {
   return to_string(b.method) + ", " + bins;
 }
 
-void describe_default(ScoredTable& out, const HbosParams& params, const CsvTable& table) {
+void describe_default(ScoredTable& out, const HbosParams& params, const CsvLayout& layout) {
   out.model = "default: " + describe(params.feature) + ", tail " + to_string(params.feature.tail);
   std::string periodic;
   for (std::size_t j = 0; j < params.features.size(); ++j) {
@@ -34,51 +37,91 @@ void describe_default(ScoredTable& out, const HbosParams& params, const CsvTable
     } else {
       periodic += ", ";
     }
-    periodic += table.feature_name(static_cast<Eigen::Index>(j));
+    periodic += layout.feature_name(static_cast<Eigen::Index>(j));
   }
   out.model += periodic;
 }
 
-void run_default(ScoredTable& out, const ScoreOptions& options, const CsvTable& table) {
-  const HbosParams params = make_params(options, table);
-  const auto model = Hbosd::fit(table.features, params);
-  out.contributions = model.contributions(table.features);
-  out.scores = model.score(table.features);
-  for (Eigen::Index j = 0; j < model.n_features(); ++j) {
-    const Histogram<double>& h = model.histogram(j);
-    const FeatureSpec& spec = params.spec(j);
+/// Runs `fit_column(j)` for every feature; a library error names the feature by index and name
+/// (the one-feature model it came from calls every feature "feature 0").
+template <class FitColumn>
+void for_each_feature(const CsvLayout& layout, Eigen::Index d, const FitColumn& fit_column) {
+  for (Eigen::Index j = 0; j < d; ++j) {
+    try {
+      fit_column(j);
+    } catch (const InvalidArgument& e) {
+      std::string message = e.what();
+      const std::string own = "feature 0";
+      if (message.rfind(own, 0) == 0) message = message.substr(own.size());
+      throw InvalidArgument(fmt::format("feature {} (\"{}\"){}{}", j, layout.feature_name(j),
+                                        message.empty() || message[0] == ':' ? "" : ": ", message));
+    }
+  }
+}
+
+void run_default(ScoredTable& out, const ScoreOptions& options, const CsvLayout& layout) {
+  const HbosParams params = make_params(options, layout);
+  RowStore& values = out.contributions;
+  const Eigen::Index n = values.rows();
+  const Eigen::Index d = values.cols();
+  auto matrix = values.matrix();
+  Eigen::VectorXd column_scores(n);
+  for_each_feature(layout, d, [&](Eigen::Index j) {
+    HbosParams one = params;
+    one.features.clear();
+    if (!params.features.empty()) one.features.push_back(params.spec(j));
+    one.feature = params.spec(j);
+    const auto model = Hbosd::fit_and_score(matrix.col(j), column_scores, one);
+    // A one-feature score is that feature's contribution, bit for bit.
+    matrix.col(j) = column_scores;
+    const Histogram<double>& h = model.histogram(0);
+    const FeatureSpec& spec = one.feature;
     // Shifted histograms count on a grid `shifts` times finer; report the coarse bins the user
     // asked for (a constant feature has a single bin either way).
     const bool fine = spec.binning.method != BinningMethod::EqualFrequency && h.bins() > 1;
     out.bins.push_back(fine ? h.bins() / spec.binning.shifts : h.bins());
+  });
+  // The library adds the contributions in feature order, starting from the first.
+  out.scores.resize(n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const double* row = values.data() + i * d;
+    double sum = row[0];
+    for (Eigen::Index j = 1; j < d; ++j) sum += row[j];
+    out.scores[i] = sum;
   }
-  describe_default(out, params, table);
+  describe_default(out, params, layout);
   const auto verdict = threshold_scores(out.scores, options.threshold);
   out.threshold = verdict.threshold;
   out.outlier = (!verdict.inlier).cast<int>();
   out.n_outliers = verdict.n_outliers();
 }
 
-void run_pyod(ScoredTable& out, const ScoreOptions& options, const CsvTable& table) {
+void run_pyod(ScoredTable& out, const ScoreOptions& options, const CsvLayout& layout) {
   const PyodParams params = make_pyod_params(options);
-  const auto model = PyodHbos<double>::fit(table.features, params);
-  out.scores = model.decision_scores();
-  const Eigen::Index n = table.rows();
-  const Eigen::Index d = model.n_features();
-  out.contributions.resize(n, d);
-  for (Eigen::Index j = 0; j < d; ++j) {
-    for (Eigen::Index i = 0; i < n; ++i) {
-      out.contributions(i, j) = -model.lookup(j, table.features(i, j)).log_term;
-    }
-    out.bins.push_back(model.bins(j));
+  RowStore& values = out.contributions;
+  const Eigen::Index n = values.rows();
+  const Eigen::Index d = values.cols();
+  auto matrix = values.matrix();
+  for_each_feature(layout, d, [&](Eigen::Index j) {
+    const auto model = PyodHbos<double>::fit(matrix.col(j), params);
+    // A one-feature decision score is -log2(density + alpha) of its bin: the contribution.
+    matrix.col(j) = model.decision_scores();
+    out.bins.push_back(model.bins(0));
+  });
+  // PyOD sums the log terms with numpy's pairwise summation (a plain loop below 8 features);
+  // the contributions are their negations, and negation commutes with rounding.
+  out.scores.resize(n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    out.scores[i] = detail::numpy_pairwise_sum(values.data() + i * d, d, 1);
   }
   out.model = fmt::format("pyod: PyOD 3.6.5 HBOS, n_bins {}, alpha {}, tol {}",
                           params.auto_bins ? std::string("auto") : std::to_string(params.n_bins),
                           params.alpha, params.tol);
   if (std::holds_alternative<Contamination>(options.threshold)) {
     // PyOD's own threshold_ and labels_, bit for bit.
-    out.threshold = model.threshold();
-    out.outlier = model.labels();
+    std::vector<double> scratch;
+    out.threshold = detail::pyod_threshold(out.scores.data(), n, params.contamination, scratch);
+    out.outlier = (out.scores.array() > out.threshold).cast<int>();
   } else {
     const auto verdict = threshold_scores(out.scores, options.threshold);
     out.threshold = verdict.threshold;
@@ -89,12 +132,13 @@ void run_pyod(ScoredTable& out, const ScoreOptions& options, const CsvTable& tab
 
 }  // namespace
 
-ScoredTable score_table(const ScoreOptions& options, const CsvTable& table) {
+ScoredTable score_table(const ScoreOptions& options, const CsvLayout& layout, RowStore values) {
   ScoredTable out;
+  out.contributions = std::move(values);
   if (options.mode == Mode::Pyod) {
-    run_pyod(out, options, table);
+    run_pyod(out, options, layout);
   } else {
-    run_default(out, options, table);
+    run_default(out, options, layout);
   }
   return out;
 }

@@ -12,7 +12,7 @@
 namespace hbos::cli {
 namespace {
 
-std::string describe_input(const ScoreOptions& options, const CsvTable& table) {
+std::string describe_input(const ScoreOptions& options, const ScoreInput& table) {
   const std::string source = options.input == "-" ? "<stdin>" : options.input;
   std::string header;
   if (table.has_header) {
@@ -33,12 +33,12 @@ std::string describe_input(const ScoreOptions& options, const CsvTable& table) {
           fmt::format("{} \"{}\"", k > 0 ? "," : "", table.column_names[table.ignored_columns[k]]);
     }
   }
-  return fmt::format("{}: {} rows x {} features ({}{})\n", source, table.rows(),
-                     table.features.cols(), header, label);
+  return fmt::format("{}: {} rows x {} features ({}{})\n", source, table.rows(), table.n_features(),
+                     header, label);
 }
 
 /// "5 for every feature", or the first few per feature with the range.
-std::string describe_bins(const CsvTable& table, const std::vector<Eigen::Index>& bins) {
+std::string describe_bins(const ScoreInput& table, const std::vector<Eigen::Index>& bins) {
   const auto [lo, hi] = std::minmax_element(bins.begin(), bins.end());
   if (*lo == *hi) return fmt::format("{} for every feature", *lo);
   constexpr std::size_t kShown = 8;
@@ -51,7 +51,7 @@ std::string describe_bins(const CsvTable& table, const std::vector<Eigen::Index>
   return out + fmt::format(" (min {}, max {})", *lo, *hi);
 }
 
-std::string describe_auc(const CsvTable& table, const ScoredTable& scored) {
+std::string describe_auc(const ScoreInput& table, const ScoredTable& scored) {
   if (!table.label_column) return "";
   const std::string& name = table.column_names[*table.label_column];
   const Eigen::Index labelled = table.labels.sum();
@@ -69,7 +69,7 @@ std::string describe_auc(const CsvTable& table, const ScoredTable& scored) {
 }
 
 /// The top rows by score with their two largest contributions.
-std::string describe_top(const ScoreOptions& options, const CsvTable& table,
+std::string describe_top(const ScoreOptions& options, const ScoreInput& table,
                          const ScoredTable& scored) {
   const auto n = static_cast<std::size_t>(scored.scores.size());
   const std::size_t k =
@@ -102,15 +102,14 @@ std::string describe_top(const ScoreOptions& options, const CsvTable& table,
     const std::string truth =
         table.label_column ? fmt::format("  labelled {}", table.labels[i]) : "";
     out += fmt::format("  line {:<7} score {:<10.4g} flagged {}{}  largest contributions: {}\n",
-                       table.row_lines[static_cast<std::size_t>(i)], scored.scores[i],
-                       scored.outlier[i], truth, why);
+                       table.line_of(i), scored.scores[i], scored.outlier[i], truth, why);
   }
   return out;
 }
 
 }  // namespace
 
-std::string format_summary(const ScoreOptions& options, const CsvTable& table,
+std::string format_summary(const ScoreOptions& options, const ScoreInput& table,
                            const ScoredTable& scored) {
   std::string out = describe_input(options, table);
   if (table.has_header && !table.numeric_header_cells.empty()) {

@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "csv_reader.hpp"
+#include "score_input.hpp"
 #include "score_options.hpp"
 #include "scoring.hpp"
 
@@ -13,7 +13,7 @@ namespace hbos::cli {
 /// A few lines for a human: rows and features read, the model and its bins per feature, the
 /// threshold and the outliers it flags, the ROC-AUC against the label column when there is one,
 /// and the `options.top` highest-scoring rows with the features that contribute most.
-[[nodiscard]] std::string format_summary(const ScoreOptions& options, const CsvTable& table,
+[[nodiscard]] std::string format_summary(const ScoreOptions& options, const ScoreInput& table,
                                          const ScoredTable& scored);
 
 }  // namespace hbos::cli

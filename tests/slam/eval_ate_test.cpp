@@ -125,10 +125,28 @@ TEST_CASE("ATE needs at least two associations", "[eval][ate]") {
 TEST_CASE("share tracked: evaluated poses over the frames in the ground-truth span",
           "[eval][tracked]") {
   const Trajectory gt = synthetic_trajectory(1001, 50.0, 0.01);  // 10 s of ground truth
-  const auto by_rate = hbos::slam::compute_tracked_share(150, gt, 30.0);
-  CHECK(by_rate.sequence_frames == 301);
-  CHECK(by_rate.share == Approx(150.0 / 301.0).epsilon(1e-15));
-  CHECK(by_rate.basis == "frame rate");
+  // Without a frame list the frames are counted from the estimate's own spacing: 150 poses at
+  // 30 Hz over the first 5 s of a 10 s span, and a 1 s gap in them, miss 30 + ~150 frames.
+  std::vector<double> evaluated;
+  for (int i = 0; i < 180; ++i) {
+    if (i >= 60 && i < 90) continue;  // the gap: 30 frames not tracked
+    evaluated.push_back(50.0 + i / 30.0);
+  }
+  REQUIRE(evaluated.size() == 150);
+  const auto by_spacing = hbos::slam::compute_tracked_share(evaluated, gt);
+  CHECK(by_spacing.basis == "estimate spacing");
+  CHECK(by_spacing.frame_period == Approx(1.0 / 30.0));
+  // 150 evaluated + 30 in the gap + floor(4.03 s * 30 Hz) = 121 after the last pose (120 if
+  // the division rounds down).
+  CHECK(by_spacing.sequence_frames >= 150 + 30 + 120);
+  CHECK(by_spacing.sequence_frames <= 150 + 30 + 121);
+  CHECK(by_spacing.share <= 1.0);
+  // An estimate denser than the camera cannot make the share exceed 1.
+  std::vector<double> dense;
+  for (int i = 0; i <= 330; ++i) dense.push_back(50.0 + i / 33.0);
+  CHECK(hbos::slam::compute_tracked_share(dense, gt).share == 1.0);
+  CHECK_THROWS_WITH(hbos::slam::compute_tracked_share(std::vector<double>{50.0}, gt),
+                    Contains("--frames"));
   // A frame list counts only frames inside the span, and dropped frames lower the count.
   std::vector<double> frames = {49.0, 49.99};
   for (int i = 0; i < 250; ++i) frames.push_back(50.0 + 0.04 * i);
@@ -139,7 +157,8 @@ TEST_CASE("share tracked: evaluated poses over the frames in the ground-truth sp
   CHECK(by_list.basis == "frame list");
   CHECK_THROWS_WITH(hbos::slam::compute_tracked_share(1, gt, std::vector<double>{1.0, 2.0}),
                     Contains("none of the 2 frame stamps"));
-  CHECK_THROWS_WITH(hbos::slam::compute_tracked_share(1, gt, 0.0), Contains("frame_rate"));
+  CHECK_THROWS_WITH(hbos::slam::compute_tracked_share(260, gt, frames),
+                    Contains("another sequence"));
 }
 
 TEST_CASE("evaluate(): one association for SE(3) and Sim(3); RPE uses the Sim(3) scale",

@@ -38,6 +38,13 @@ AteResult compute_ate(const Trajectory& gt, const Trajectory& est,
                          : align_similarity(est_positions, result.gt_positions);
   result.aligned_positions = result.alignment.apply(est_positions);
   result.errors = (result.aligned_positions - result.gt_positions).colwise().norm().transpose();
+  for (Eigen::Index k = 0; k < result.errors.size(); ++k) {
+    const Match& m = matches[static_cast<std::size_t>(k)];
+    detail::require(std::isfinite(result.errors[k]), "compute_ate: the error of ", est.name,
+                    " at stamp ", est.stamps[static_cast<std::size_t>(m.est)], " against ", gt.name,
+                    " at stamp ", gt.stamps[static_cast<std::size_t>(m.gt)], " is not finite (",
+                    result.errors[k], "): positions too large to align in double precision");
+  }
   result.stats = compute_statistics(result.errors);
   return result;
 }

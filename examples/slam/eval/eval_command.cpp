@@ -1,6 +1,7 @@
 #include "eval/eval_command.hpp"
 
 #include "common/atomic_file.hpp"
+#include "common/cli_validators.hpp"
 #include "eval/evaluate.hpp"
 #include "eval/plot.hpp"
 #include "eval/report.hpp"
@@ -31,7 +32,6 @@ struct CommandOptions {
   double rpe_delta = 1.0;
   std::string rpe_unit = "s";
   std::string frames_path;
-  double frame_rate = 30.0;
   std::string json_path;
   std::string plot_dir;
   std::string plot_plane = "xy";
@@ -45,18 +45,18 @@ void add_options(CLI::App& app, CommandOptions& o) {
   app.add_option("--max-diff", o.max_difference,
                  "ATE association: pairs need |dt| strictly below this [s] (associate.py)")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+      ->check(examples::non_negative_number());
   app.add_option("--offset", o.offset, "added to every estimate stamp [s]")->capture_default_str();
   app.add_option("--scale", o.scale, "fixed factor on estimate positions (the scripts' --scale)")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(examples::positive_number());
   app.add_flag("--sim3", o.sim3,
                "also align with scale (Umeyama Sim(3)), for monocular estimates; the plots and "
                "the RPE then use that scale");
   app.add_flag("--no-rpe", o.no_rpe, "skip the relative pose error");
   app.add_option("--rpe-delta", o.rpe_delta, "RPE delta, in --rpe-unit (always a fixed delta)")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(examples::positive_number());
   app.add_option("--rpe-unit", o.rpe_unit,
                  "s: estimate time; frames: estimate poses; m: metres travelled along the ground "
                  "truth")
@@ -64,11 +64,8 @@ void add_options(CLI::App& app, CommandOptions& o) {
       ->check(CLI::IsMember({"s", "frames", "m"}));
   app.add_option("--frames", o.frames_path,
                  "the sequence's rgb.txt (first column: frame stamps), to count frames for the "
-                 "share tracked");
-  app.add_option("--frame-rate", o.frame_rate,
-                 "camera rate to estimate the frame count when --frames is not given [Hz]")
-      ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+                 "share tracked (without it, frames are counted from the spacing of the "
+                 "estimate's stamps)");
   app.add_option("--json", o.json_path, "write the results as JSON to this file (atomically)");
   app.add_option("--plot", o.plot_dir, "write PNG plots into this directory");
   app.add_option("--plot-plane", o.plot_plane, "projection of the top view")
@@ -80,7 +77,7 @@ void add_options(CLI::App& app, CommandOptions& o) {
   app.add_option("--quaternion-tolerance", o.quaternion_tolerance,
                  "reject quaternions whose norm differs from 1 by more than this")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+      ->check(examples::non_negative_number());
 }
 
 Trajectory read_input(const std::string& path, const ReadOptions& options, const char* role,
@@ -119,7 +116,6 @@ int run(const CommandOptions& o, std::ostream& out, std::ostream& err) {
                                                      {"m", RpeDeltaUnit::kMetresAlongGt}};
   params.rpe_unit = units.at(o.rpe_unit);
   if (!o.frames_path.empty()) params.frame_stamps = read_frame_stamps(o.frames_path);
-  params.frame_rate = o.frame_rate;
 
   const Evaluation evaluation = evaluate(gt, est, params);
   out << format_report(evaluation);

@@ -1,5 +1,8 @@
 #include "eval/evaluate.hpp"
 
+#include <algorithm>
+#include <vector>
+
 namespace hbos::slam {
 
 Evaluation evaluate(const Trajectory& gt, const Trajectory& est, const EvaluationParams& params) {
@@ -19,9 +22,19 @@ Evaluation evaluate(const Trajectory& gt, const Trajectory& est, const Evaluatio
   }
 
   const auto evaluated = static_cast<Eigen::Index>(matches.size());
-  result.tracked = params.frame_stamps.empty()
-                       ? compute_tracked_share(evaluated, gt, params.frame_rate)
-                       : compute_tracked_share(evaluated, gt, params.frame_stamps);
+  if (params.frame_stamps.empty()) {
+    // The evaluated estimate stamps on the ground-truth clock, sorted (the greedy association
+    // promises no order of its pairs).
+    std::vector<double> stamps;
+    stamps.reserve(matches.size());
+    for (const Match& m : matches) {
+      stamps.push_back(est.stamps[static_cast<std::size_t>(m.est)] + params.association.offset);
+    }
+    std::sort(stamps.begin(), stamps.end());
+    result.tracked = compute_tracked_share(stamps, gt);
+  } else {
+    result.tracked = compute_tracked_share(evaluated, gt, params.frame_stamps);
+  }
 
   if (params.rpe) {
     RpeParams rpe_params;

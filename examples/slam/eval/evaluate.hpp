@@ -28,9 +28,9 @@ struct EvaluationParams {
   double rpe_delta = 1.0;                          ///< [s], [frames] or [m], see rpe_unit
   RpeDeltaUnit rpe_unit = RpeDeltaUnit::kSeconds;  ///< unit of rpe_delta
   /// Camera frame stamps of the sequence (rgb.txt) for the share tracked; when empty, the
-  /// frames are estimated from frame_rate.
+  /// frames are counted from the spacing of the evaluated estimate stamps (see
+  /// compute_tracked_share).
   std::vector<double> frame_stamps;
-  double frame_rate = 30.0;  ///< [Hz] camera rate when frame_stamps is empty (TUM, Bonn: 30)
 };
 
 /// Everything evaluate() measured.

@@ -80,7 +80,7 @@ nlohmann::json to_json(const Evaluation& evaluation) {
                   {"span_begin_s", t.span_begin},
                   {"span_end_s", t.span_end},
                   {"basis", t.basis}};
-  if (t.basis == "frame rate") j["tracked"]["frame_rate_hz"] = p.frame_rate;
+  if (t.basis == "estimate spacing") j["tracked"]["frame_period_s"] = t.frame_period;
   if (evaluation.rpe) {
     const RpeResult& r = *evaluation.rpe;
     j["rpe"] = {
@@ -147,7 +147,12 @@ std::string format_report(const Evaluation& evaluation) {
   }
   const TrackedShare& t = evaluation.tracked;
   const std::string frames_from =
-      t.basis == "frame rate" ? fmt::format("estimated at {} Hz", p.frame_rate) : "frame list";
+      t.basis == "estimate spacing"
+          ? fmt::format(
+                "counted from the estimate's {:.1f} ms spacing; --frames rgb.txt counts "
+                "exactly",
+                1e3 * t.frame_period)
+          : "frame list";
   line(
       fmt::format("  tracked: {} evaluated poses / {} frames ({}) over the {:.1f} s "
                   "ground-truth span = {:.1f} %",

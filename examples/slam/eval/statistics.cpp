@@ -23,7 +23,10 @@ ErrorStatistics ErrorStatistics::radians_to_degrees() const {
 
 ErrorStatistics compute_statistics(const Eigen::VectorXd& errors) {
   detail::require(errors.size() > 0, "compute_statistics: no errors to summarise");
-  detail::require(errors.allFinite(), "compute_statistics: errors must be finite");
+  for (Eigen::Index i = 0; i < errors.size(); ++i) {
+    detail::require(std::isfinite(errors[i]), "compute_statistics: error ", i, " of ",
+                    errors.size(), " is not finite (", errors[i], ")");
+  }
   const Eigen::Index n = errors.size();
   const auto count = static_cast<double>(n);
   ErrorStatistics s;

@@ -13,6 +13,7 @@
 #include <cstddef>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <istream>
 #include <iterator>
@@ -69,6 +70,23 @@ std::string location(const std::string& name, Eigen::Index line) {
   return name + ":" + std::to_string(line);
 }
 
+/// Stamps are seconds: Unix times (TUM, Bonn: ~1.3e9) or seconds from the start. Beyond 1e12 s
+/// (31,700 years) a stamp is a corrupted field, and differences of such stamps lose every digit
+/// of a frame period (1e300 - 1e300 is 0, 1e300 * 30 Hz overflows a frame count).
+constexpr double kMaxAbsStamp = 1e12;  ///< [s]
+/// Positions beyond 1e9 m (beyond any map on Earth, UTM included) are corrupted fields; their
+/// squares in the alignment would overflow to inf.
+constexpr double kMaxAbsPosition = 1e9;  ///< [m]
+
+/// Throws unless `path` names something that can be read as a file (a directory opens as an
+/// ifstream on Linux and then fails with a bare "read error").
+void require_readable_file(const std::string& path, const char* what) {
+  std::error_code error;
+  detail::require(!std::filesystem::is_directory(path, error), path, ": is a directory, not ",
+                  what);
+  detail::require(std::filesystem::exists(path, error), path, ": ", what, " does not exist");
+}
+
 struct ParsedLine {
   Eigen::Index line = 0;
   std::string stamp_text;  // as written, for messages (the double prints differently)
@@ -91,6 +109,13 @@ ParsedLine parse_pose_line(const std::vector<std::string_view>& fields, const st
                     fields[k], "'");
     parsed.values[k] = value;
   }
+  for (std::size_t k = 1; k <= 3; ++k) {
+    detail::require(std::abs(parsed.values[k]) <= kMaxAbsPosition, where, ": field '",
+                    kFieldNames[k], "' = '", fields[k],
+                    "' is not a plausible position in metres (|x| must be <= 1e9)");
+  }
+  detail::require(std::abs(parsed.values[0]) <= kMaxAbsStamp, where, ": stamp '", fields[0],
+                  "' is not a plausible time in seconds (|t| must be <= 1e12)");
   const double norm =
       std::sqrt(parsed.values[4] * parsed.values[4] + parsed.values[5] * parsed.values[5] +
                 parsed.values[6] * parsed.values[6] + parsed.values[7] * parsed.values[7]);
@@ -199,6 +224,7 @@ Trajectory parse_tum_trajectory(std::istream& in, const std::string& name,
 
 Trajectory read_tum_trajectory(const std::string& path, const ReadOptions& options,
                                ReadReport* report) {
+  require_readable_file(path, "a trajectory file");
   std::ifstream in(path);
   detail::require(static_cast<bool>(in), path, ": cannot open trajectory file (",
                   std::strerror(errno), ")");
@@ -220,6 +246,7 @@ void write_tum_trajectory(const std::string& path, const Trajectory& trajectory)
 }
 
 std::vector<double> read_frame_stamps(const std::string& path) {
+  require_readable_file(path, "a frame list");
   std::ifstream in(path);
   detail::require(static_cast<bool>(in), path, ": cannot open frame list (", std::strerror(errno),
                   ")");
@@ -234,6 +261,8 @@ std::vector<double> read_frame_stamps(const std::string& path) {
     detail::require(parse_double(fields.front(), stamp) && std::isfinite(stamp),
                     location(path, line_number), ": frame stamp is not a finite number: '",
                     fields.front(), "'");
+    detail::require(std::abs(stamp) <= kMaxAbsStamp, location(path, line_number), ": frame stamp '",
+                    fields.front(), "' is not a plausible time in seconds (|t| must be <= 1e12)");
     stamps.push_back(stamp);
   }
   detail::require(!in.bad(), path, ": read error");

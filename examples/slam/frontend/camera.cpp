@@ -10,6 +10,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -41,6 +42,29 @@ std::string trim(const std::string& text) {
   return text.substr(begin, end - begin + 1);
 }
 
+constexpr double kMinFocalPx = 1.0;        // [px]
+constexpr double kMaxFocalPx = 1e6;        // [px]
+constexpr double kMaxDistortion = 1000.0;  // [-]
+constexpr double kMaxDepthFactor = 1e9;    // [raw units / m]
+
+/// A value as written, in double quotes unless the file already quoted it.
+std::string quoted(const std::string& text) {
+  const bool has_quotes = text.size() >= 2 && (text.front() == '"' || text.front() == '\'') &&
+                          text.back() == text.front();
+  return has_quotes ? text : "\"" + text + "\"";
+}
+
+/// Throws unless `path` is a readable regular file (a directory would open and then fail).
+void require_file(const std::string& path) {
+  std::error_code error;
+  if (std::filesystem::is_directory(path, error)) {
+    throw InvalidArgument(fmt::format("camera file '{}' is a directory", path));
+  }
+  if (!std::filesystem::exists(path, error)) {
+    throw InvalidArgument(fmt::format("camera file '{}' does not exist", path));
+  }
+}
+
 // Fills the model from key -> (value, where) and checks it; `where` already names file:line.
 CameraModel build_camera(const std::string& name,
                          const std::map<std::string, std::pair<double, std::string>>& values) {
@@ -62,8 +86,20 @@ CameraModel build_camera(const std::string& name,
     if (!std::isfinite(value)) {
       throw InvalidArgument(fmt::format("{}: field '{}' is not finite", where, key));
     }
-    if ((key == "fx" || key == "fy" || key == "depth_factor") && !(value > 0.0)) {
-      throw InvalidArgument(fmt::format("{}: field '{}' must be > 0, got {}", where, key, value));
+    if ((key == "fx" || key == "fy") && !(value >= kMinFocalPx && value <= kMaxFocalPx)) {
+      throw InvalidArgument(fmt::format(
+          "{}: field '{}' = {:g} px is not a plausible focal length (legal: [1, 1e6] px)", where,
+          key, value));
+    }
+    if (key == "depth_factor" && !(value > 0.0 && value <= kMaxDepthFactor)) {
+      throw InvalidArgument(
+          fmt::format("{}: field '{}' = {:g} must be > 0 and <= 1e9 (raw depth units per metre)",
+                      where, key, value));
+    }
+    if ((key[0] == 'k' || key[0] == 'p') && !(std::abs(value) <= kMaxDistortion)) {
+      throw InvalidArgument(fmt::format(
+          "{}: distortion coefficient '{}' = {:g} is not plausible (legal: |{}| <= 1000)", where,
+          key, value, key));
     }
     *fields.at(key) = value;
   }
@@ -71,6 +107,7 @@ CameraModel build_camera(const std::string& name,
 }
 
 CameraModel load_yaml_camera(const std::string& path) {
+  require_file(path);
   std::ifstream in(path);
   if (!in) throw InvalidArgument(fmt::format("cannot open camera file '{}'", path));
   std::map<std::string, std::pair<double, std::string>> values;
@@ -93,7 +130,7 @@ CameraModel load_yaml_camera(const std::string& path) {
     const double value = std::strtod(value_text.c_str(), &end);
     if (value_text.empty() || end != value_text.c_str() + value_text.size()) {
       throw InvalidArgument(
-          fmt::format("{}: field '{}' is not a number: \"{}\"", where, key, value_text));
+          fmt::format("{}: field '{}' is not a number: {}", where, key, quoted(value_text)));
     }
     if (values.count(key) != 0) {
       throw InvalidArgument(
@@ -105,6 +142,7 @@ CameraModel load_yaml_camera(const std::string& path) {
 }
 
 CameraModel load_json_camera(const std::string& path) {
+  require_file(path);
   std::ifstream in(path);
   if (!in) throw InvalidArgument(fmt::format("cannot open camera file '{}'", path));
   std::stringstream buffer;
@@ -118,6 +156,9 @@ CameraModel load_json_camera(const std::string& path) {
     const auto line =
         1 + std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(upto), '\n');
     throw InvalidArgument(fmt::format("{}:{}: not valid JSON: {}", path, line, e.what()));
+  } catch (const nlohmann::json::exception& e) {
+    // E.g. out_of_range 406 for a number beyond a double (517.3e6408): no byte position.
+    throw InvalidArgument(fmt::format("{}: not readable as camera JSON: {}", path, e.what()));
   }
   if (!j.is_object()) throw InvalidArgument(fmt::format("{}: expected a JSON object", path));
   std::map<std::string, std::pair<double, std::string>> values;
@@ -198,6 +239,18 @@ CameraModel load_camera(const std::string& preset_or_path) {
   if (ext.empty()) return camera_preset(preset_or_path);
   throw InvalidArgument("camera '" + preset_or_path +
                         "' is neither a preset (tum1, tum3) nor a .yaml/.yml/.json file");
+}
+
+void check_camera_fits_image(const CameraModel& camera, int width, int height,
+                             const std::string& image) {
+  const bool inside =
+      camera.cx >= 0.0 && camera.cx <= width && camera.cy >= 0.0 && camera.cy <= height;
+  if (!inside) {
+    throw InvalidArgument(fmt::format(
+        "camera '{}': principal point (cx, cy) = ({:g}, {:g}) px lies outside the {}x{} image "
+        "'{}' (legal: [0, {}] x [0, {}])",
+        camera.name, camera.cx, camera.cy, width, height, image, width, height));
+  }
 }
 
 std::vector<cv::Point2f> undistort_pixels(const CameraModel& camera,

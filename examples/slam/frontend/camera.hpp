@@ -39,7 +39,18 @@ struct CameraModel {
 /// (default 0) and depth_factor (default 5000) are optional; a `Camera.` prefix is accepted and
 /// ORB-SLAM2's `DepthMapFactor` means depth_factor. Other keys are ignored, so an ORB-SLAM2
 /// settings file loads as is. Throws hbos::InvalidArgument naming file:line and the field.
+///
+/// Legal ranges (anything else is an error naming the field and the value): fx, fy in
+/// [1, 1e6] px (below 1 px the field of view exceeds 180 degrees; 1e6 px is a 0.04 degree lens on
+/// a 640-px image); cx, cy finite (checked against the image by check_camera_fits_image);
+/// k1, k2, p1, p2, k3 finite with |k| <= 1000; depth_factor in (0, 1e9] (raw depth units per
+/// metre; TUM: 5000). A number beyond the range of a double (`517.3e6408`) is an error too.
 [[nodiscard]] CameraModel load_camera(const std::string& preset_or_path);
+
+/// Throws hbos::InvalidArgument unless the principal point (cx, cy) lies inside a
+/// `width` x `height` image ([0, width] x [0, height] px); `image` names it in the message.
+void check_camera_fits_image(const CameraModel& camera, int width, int height,
+                             const std::string& image);
 
 /// Undistorted pixel positions of `distorted` pixels (identity without distortion).
 [[nodiscard]] std::vector<cv::Point2f> undistort_pixels(const CameraModel& camera,

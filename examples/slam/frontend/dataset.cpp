@@ -8,15 +8,92 @@
 
 #include <opencv2/imgcodecs.hpp>
 
+#include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 
 namespace hbos::slam {
 
+namespace {
+
+/// Throws unless `path` names a regular file that can be opened for reading; `what` (e.g.
+/// "colour image 'x.png' (rgb.txt:7)") names it.
+void require_readable(const std::string& path, const std::string& what) {
+  namespace fs = std::filesystem;
+  std::error_code error;
+  if (fs::is_directory(path, error)) throw InvalidArgument(what + " is a directory");
+  if (!fs::exists(path, error)) throw InvalidArgument(what + " does not exist");
+  if (!fs::is_regular_file(path, error)) throw InvalidArgument(what + " is not a regular file");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InvalidArgument(what + " cannot be opened: " + std::strerror(errno));
+}
+
+std::vector<unsigned char> read_bytes(const std::string& path, const std::string& what) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InvalidArgument(what + " cannot be opened: " + std::strerror(errno));
+  std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)),
+                                   std::istreambuf_iterator<char>());
+  if (in.bad()) throw InvalidArgument(what + ": read error");
+  return bytes;
+}
+
+/// Why an encoded JPEG or PNG is incomplete, or empty when it is whole. OpenCV decodes a
+/// truncated JPEG (grey rows where data is missing) and only warns on stderr, so the ends are
+/// checked here: a JPEG must end with its EOI marker FF D9 (trailing padding of up to 64 bytes is
+/// tolerated), a PNG with its IEND chunk.
+std::string incomplete_encoding(const std::vector<unsigned char>& b) {
+  const std::size_t n = b.size();
+  if (n >= 3 && b[0] == 0xFF && b[1] == 0xD8 && b[2] == 0xFF) {
+    const std::size_t from = n > 66 ? n - 66 : 0;
+    for (std::size_t i = n - 1; i > from; --i) {
+      if (b[i - 1] == 0xFF && b[i] == 0xD9) return {};
+    }
+    return "is a truncated JPEG (no end-of-image marker FF D9)";
+  }
+  static constexpr unsigned char kPng[8] = {0x89, 'P', 'N', 'G', 0x0D, 0x0A, 0x1A, 0x0A};
+  if (n >= 8 && std::equal(kPng, kPng + 8, b.begin())) {
+    static constexpr unsigned char kIend[8] = {'I', 'E', 'N', 'D', 0xAE, 0x42, 0x60, 0x82};
+    if (n >= 8 + 12 && std::equal(kIend, kIend + 8, b.end() - 8)) return {};
+    return "is a truncated PNG (no IEND chunk at its end)";
+  }
+  return {};  // another format: left to OpenCV
+}
+
+/// Decodes an image file, refusing incomplete JPEG and PNG files.
+cv::Mat decode_image(const std::string& path, int flags, const std::string& what) {
+  const std::vector<unsigned char> bytes = read_bytes(path, what);
+  if (bytes.empty()) throw InvalidArgument(what + " is empty");
+  if (const std::string why = incomplete_encoding(bytes); !why.empty()) {
+    throw InvalidArgument(what + " " + why);
+  }
+  cv::Mat image = cv::imdecode(bytes, flags);
+  if (image.empty()) throw InvalidArgument(what + " cannot be decoded as an image");
+  return image;
+}
+
+std::string colour_name(const std::string& path, const ListedImage& image) {
+  return fmt::format("colour image '{}' (rgb.txt:{})", path, image.line);
+}
+
+std::string depth_name(const std::string& path, const ListedImage& image) {
+  return fmt::format("depth image '{}' (depth.txt:{})", path, image.line);
+}
+
+}  // namespace
+
 std::vector<ListedImage> read_image_list(const std::string& path) {
+  {
+    std::error_code error;
+    if (std::filesystem::is_directory(path, error)) {
+      throw InvalidArgument(fmt::format("image list '{}' is a directory", path));
+    }
+  }
   std::ifstream in(path);
   if (!in) throw InvalidArgument(fmt::format("cannot open image list '{}'", path));
   std::vector<ListedImage> images;
@@ -87,6 +164,18 @@ RgbdSequence load_tum_sequence(const std::string& folder, double max_difference)
   return sequence;
 }
 
+void check_sequence_files(const RgbdSequence& sequence, Eigen::Index frames) {
+  namespace fs = std::filesystem;
+  const Eigen::Index n = frames > 0 ? std::min(frames, sequence.size()) : sequence.size();
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const FrameRecord& f = sequence.frames[static_cast<std::size_t>(i)];
+    const std::string rgb_path = (fs::path(sequence.root) / f.rgb.path).string();
+    const std::string depth_path = (fs::path(sequence.root) / f.depth.path).string();
+    require_readable(rgb_path, colour_name(rgb_path, f.rgb));
+    require_readable(depth_path, depth_name(depth_path, f.depth));
+  }
+}
+
 RgbdImages read_frame_images(const RgbdSequence& sequence, Eigen::Index index,
                              double depth_factor) {
   namespace fs = std::filesystem;
@@ -96,25 +185,13 @@ RgbdImages read_frame_images(const RgbdSequence& sequence, Eigen::Index index,
   const FrameRecord& f = sequence.frames[static_cast<std::size_t>(index)];
   const std::string rgb_path = (fs::path(sequence.root) / f.rgb.path).string();
   const std::string depth_path = (fs::path(sequence.root) / f.depth.path).string();
-  if (!fs::is_regular_file(rgb_path)) {
-    throw InvalidArgument(
-        fmt::format("colour image '{}' (rgb.txt:{}) does not exist", rgb_path, f.rgb.line));
-  }
-  if (!fs::is_regular_file(depth_path)) {
-    throw InvalidArgument(
-        fmt::format("depth image '{}' (depth.txt:{}) does not exist", depth_path, f.depth.line));
-  }
+  const std::string rgb_label = colour_name(rgb_path, f.rgb);
+  const std::string depth_label = depth_name(depth_path, f.depth);
+  require_readable(rgb_path, rgb_label);
+  require_readable(depth_path, depth_label);
   RgbdImages images;
-  images.bgr = cv::imread(rgb_path, cv::IMREAD_COLOR);
-  if (images.bgr.empty()) {
-    throw InvalidArgument(
-        fmt::format("cannot read colour image '{}' (rgb.txt:{})", rgb_path, f.rgb.line));
-  }
-  const cv::Mat raw_depth = cv::imread(depth_path, cv::IMREAD_UNCHANGED);
-  if (raw_depth.empty()) {
-    throw InvalidArgument(
-        fmt::format("cannot read depth image '{}' (depth.txt:{})", depth_path, f.depth.line));
-  }
+  images.bgr = decode_image(rgb_path, cv::IMREAD_COLOR, rgb_label);
+  const cv::Mat raw_depth = decode_image(depth_path, cv::IMREAD_UNCHANGED, depth_label);
   if (raw_depth.type() != CV_16UC1) {
     throw InvalidArgument(fmt::format(
         "depth image '{}' (depth.txt:{}) is not 16-bit single channel", depth_path, f.depth.line));

@@ -55,8 +55,15 @@ struct RgbdImages {
   cv::Mat depth_m;
 };
 
+/// Checks, before a run starts, that every image of the first `frames` frames (0 = all) exists,
+/// is a regular file and can be opened; throws hbos::InvalidArgument naming the first that is
+/// not (and its list line). Decoding is left to read_frame_images.
+void check_sequence_files(const RgbdSequence& sequence, Eigen::Index frames);
+
 /// Reads frame `index`. Throws hbos::InvalidArgument naming the image (and the list line) when it
-/// cannot be read, is not 8-bit colour / 16-bit depth, or the two sizes differ.
+/// does not exist, is a directory, cannot be read, is a truncated JPEG (no end marker FF D9) or
+/// PNG (no IEND chunk), cannot be decoded, is not 8-bit colour / 16-bit depth, or the two sizes
+/// differ.
 [[nodiscard]] RgbdImages read_frame_images(const RgbdSequence& sequence, Eigen::Index index,
                                            double depth_factor);
 

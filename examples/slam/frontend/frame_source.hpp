@@ -6,6 +6,7 @@
 #include "frontend/config.hpp"
 #include "frontend/dataset.hpp"
 #include "frontend/frame.hpp"
+#include "frontend/mask_files.hpp"
 #include "frontend/person_mask.hpp"
 #include "frontend/person_scenario.hpp"
 
@@ -16,7 +17,9 @@ namespace hbos::slam {
 class FrameSource {
  public:
   /// Loads the person cut-out (scenario.add_person) and the detector (mask.source == kDetector);
-  /// throws hbos::InvalidArgument when either cannot be loaded.
+  /// resolves and checks every frame's mask file (kFiles) and, without a composited person, the
+  /// ground-truth object ids (scenario.objects_dir or `<dataset>/objects`); throws
+  /// hbos::InvalidArgument when any of them cannot be loaded or a file is missing or misfit.
   FrameSource(RgbdSequence sequence, double depth_factor, const ScenarioConfig& scenario,
               const MaskConfig& mask);
 
@@ -31,6 +34,8 @@ class FrameSource {
   double depth_factor_;
   std::optional<PersonCompositor> compositor_;
   PersonMasker masker_;
+  std::optional<MaskFiles> mask_files_;  ///< mask.source == kFiles
+  std::optional<ObjectLabels> labels_;   ///< ground truth from object-id images
 };
 
 }  // namespace hbos::slam

@@ -12,14 +12,16 @@ namespace hbos::slam {
 
 OrbExtractor::OrbExtractor(const ExtractionConfig& config, CameraModel camera)
     : config_(config), camera_(std::move(camera)) {
-  if (config_.features < 1 || config_.levels < 1 || !(config_.scale_factor > 1.f) ||
-      config_.fast_threshold < 1 || config_.min_fast_threshold < 1 ||
+  if (config_.features < 1 || config_.features > kMaxOrbFeatures || config_.levels < 1 ||
+      !(config_.scale_factor > 1.f) || config_.fast_threshold < 1 ||
+      config_.min_fast_threshold < 1 ||
       !(config_.min_depth_m >= 0.0 && config_.max_depth_m > config_.min_depth_m)) {
-    throw InvalidArgument(fmt::format(
-        "ORB settings: features {} and levels {} must be >= 1, scale factor {} > 1, FAST "
-        "thresholds {}/{} >= 1, depth range [{}, {}] m non-empty",
-        config_.features, config_.levels, config_.scale_factor, config_.fast_threshold,
-        config_.min_fast_threshold, config_.min_depth_m, config_.max_depth_m));
+    throw InvalidArgument(
+        fmt::format("ORB settings: features {} must be in [1, 100000] and levels {} >= 1, scale "
+                    "factor {} > 1, FAST "
+                    "thresholds {}/{} >= 1, depth range [{}, {}] m non-empty",
+                    config_.features, config_.levels, config_.scale_factor, config_.fast_threshold,
+                    config_.min_fast_threshold, config_.min_depth_m, config_.max_depth_m));
   }
   orb_ = cv::ORB::create(config_.features, config_.scale_factor, config_.levels,
                          /*edgeThreshold=*/19, /*firstLevel=*/0, /*WTA_K=*/2, cv::ORB::HARRIS_SCORE,

@@ -27,11 +27,18 @@ struct Features {
   [[nodiscard]] std::size_t size() const { return keypoints.size(); }
 };
 
+/// The most ORB features per frame an extractor accepts: 100x ORB-SLAM2's 1000; beyond it
+/// cv::ORB's per-level buffers (and then the matcher) need gigabytes for no gain on images of
+/// ordinary size.
+inline constexpr int kMaxOrbFeatures = 100000;
+
 /// cv::ORB set up as ORB-SLAM2 (1000 features, scale 1.2, 8 levels, FAST 20 with a retry at 7).
 /// ORB-SLAM2 falls back to FAST 7 per grid cell; cv::ORB has no cells, so here the whole frame is
 /// retried at 7 when FAST 20 finds fewer corners than `features`.
 class OrbExtractor {
  public:
+  /// Throws hbos::InvalidArgument on settings out of range (features outside
+  /// [1, kMaxOrbFeatures], levels < 1, scale factor <= 1, ...).
   OrbExtractor(const ExtractionConfig& config, CameraModel camera);
 
   [[nodiscard]] Features extract(const Frame& frame);

@@ -58,7 +58,7 @@ nlohmann::json summary_json(const RunResult& run, const Config& config,
                    {"camera", camera_name},
                    {"scenario", scenario_name(config.scenario)},
                    {"mask", to_string(config.mask.source)},
-                   {"screen", config.screen.strategy},
+                   {"screen", config.screen.name},
                    {"screen_rounds", config.screen.rounds},
                    {"rough_pose", to_string(config.rough_pose.method)},
                    {"ransac_threshold_px", config.rough_pose.ransac_threshold_px},
@@ -121,7 +121,7 @@ std::vector<std::string> write_run_outputs(const std::string& dir, const RunResu
   if (run.figure) {
     const std::string what = fmt::format("frame {} | {} scenario, mask {}, screen {}",
                                          run.figure->frame.index, scenario_name(config.scenario),
-                                         to_string(config.mask.source), config.screen.strategy);
+                                         to_string(config.mask.source), config.screen.name);
     write_png(path("matches.png"), draw_match_figure(*run.figure, what));
     written.push_back(path("matches.png"));
     if (!run.figure->result.screen.magnitude.empty()) {

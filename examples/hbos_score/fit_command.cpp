@@ -1,0 +1,173 @@
+#include "fit_command.hpp"
+
+#include <CLI/CLI.hpp>
+
+#include <hbos/model.hpp>
+#include <hbos/model_file.hpp>
+#include <hbos/pyod/model.hpp>
+#include <hbos/pyod/model_file.hpp>
+
+#include <cstdio>
+#include <map>
+#include <stdexcept>
+#include <string>
+
+#include "csv_reader.hpp"
+#include "npy_reader.hpp"
+
+namespace hbos::cli {
+namespace {
+
+constexpr int kExitError = 1;
+constexpr int kExitBadInput = 2;
+
+struct FitOptions {
+  std::string input;
+  std::string output;
+  std::string mode = "default";
+  std::string bins;  // empty: the mode's default
+  Eigen::Index shifts = 5;
+  std::string binning = "equal-width";
+  std::string tail = "both";
+  double width = 0.01, origin = 0.0;
+  double alpha = 0.1, tol = 0.5, contamination = 0.1;
+  bool header = false, no_header = false;
+  std::string label_column;
+};
+
+/// "auto" -> -1, a count -> itself. \throws std::invalid_argument naming the value.
+Eigen::Index parse_count(const std::string& text) {
+  std::size_t used = 0;
+  long long v = 0;
+  try {
+    v = std::stoll(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used != text.size() || v < 1)
+    throw std::invalid_argument("--bins: '" + text + "' is not a count >= 1 or a rule");
+  return static_cast<Eigen::Index>(v);
+}
+
+HbosParams default_params(const FitOptions& o) {
+  HbosParams p;
+  const std::map<std::string, BinningMethod> methods{
+      {"equal-width", BinningMethod::EqualWidth},
+      {"fixed-width", BinningMethod::FixedWidth},
+      {"equal-frequency", BinningMethod::EqualFrequency}};
+  const std::map<std::string, BinCountRule> rules{{"sqrt", BinCountRule::Sqrt},
+                                                  {"sturges", BinCountRule::Sturges},
+                                                  {"scott", BinCountRule::Scott},
+                                                  {"fd", BinCountRule::FreedmanDiaconis},
+                                                  {"birge", BinCountRule::BirgeRozenblac},
+                                                  {"auto", BinCountRule::BirgeRozenblac}};
+  const std::map<std::string, Tail> tails{
+      {"both", Tail::Both}, {"upper", Tail::Upper}, {"lower", Tail::Lower}};
+  p.feature.binning.method = methods.at(o.binning);
+  p.feature.binning.shifts = o.shifts;
+  p.feature.binning.width = o.width;
+  p.feature.binning.origin = o.origin;
+  p.feature.tail = tails.at(o.tail);
+  if (!o.bins.empty()) {
+    const auto rule = rules.find(o.bins);
+    if (rule != rules.end()) {
+      p.feature.binning.rule = rule->second;
+    } else {
+      p.feature.binning.bins = parse_count(o.bins);
+    }
+  }
+  return p;
+}
+
+PyodParams pyod_params(const FitOptions& o) {
+  PyodParams p;
+  p.alpha = o.alpha;
+  p.tol = o.tol;
+  p.contamination = o.contamination;
+  if (o.bins == "auto") {
+    p.auto_bins = true;
+  } else if (!o.bins.empty()) {
+    p.n_bins = parse_count(o.bins);
+  }
+  return p;
+}
+
+}  // namespace
+
+int fit_command(int argc, char** argv) {
+  CLI::App app{
+      "Fits HBOS on the rows of a CSV or .npy file (rows = samples, columns = features) and saves "
+      "the model to a file, for `hbos-score score MODEL DATA`.",
+      "hbos-score fit"};
+  FitOptions o;
+  app.add_option("data", o.input, "CSV file (- = standard input) or .npy file (float64/float32)")
+      ->required();
+  app.add_option("-o,--output", o.output, "model file to write (atomically)")->required();
+  app.add_option("--mode", o.mode, "default (scale-invariant HBOS) or pyod (PyOD 3.6.5's HBOS)")
+      ->check(CLI::IsMember({"default", "pyod"}))
+      ->capture_default_str();
+  app.add_option("--bins", o.bins,
+                 "bins per feature: a count, or a rule (default mode: sqrt, sturges, scott, fd, "
+                 "birge; pyod: auto). Default 5 (default mode), 10 (pyod)")
+      ->type_name("N|RULE");
+  app.add_option("--shifts", o.shifts, "default mode: averaged shifted histograms, 1 = plain")
+      ->capture_default_str();
+  app.add_option("--binning", o.binning, "default mode: equal-width, fixed-width, equal-frequency")
+      ->check(CLI::IsMember({"equal-width", "fixed-width", "equal-frequency"}))
+      ->capture_default_str();
+  app.add_option("--width", o.width, "fixed-width bin width [feature units]")
+      ->capture_default_str();
+  app.add_option("--origin", o.origin, "an edge of fixed-width bins")->capture_default_str();
+  app.add_option("--tail", o.tail, "default mode: both, upper or lower")
+      ->check(CLI::IsMember({"both", "upper", "lower"}))
+      ->capture_default_str();
+  app.add_option("--alpha", o.alpha, "pyod: density regulariser")->capture_default_str();
+  app.add_option("--tol", o.tol, "pyod: out-of-range tolerance [bins]")->capture_default_str();
+  app.add_option("--contamination", o.contamination,
+                 "pyod: share of training outliers (threshold_)")
+      ->capture_default_str();
+  auto* header = app.add_flag("--header", o.header, "CSV: the first line names the columns");
+  app.add_flag("--no-header", o.no_header, "CSV: every line is data")->excludes(header);
+  app.add_option("--label-column", o.label_column,
+                 "CSV: a 0/1 label column to leave out of the features");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : kExitBadInput;
+  }
+  try {
+    CsvOptions csv;
+    if (o.header) csv.header = HeaderMode::Present;
+    if (o.no_header) csv.header = HeaderMode::Absent;
+    csv.label_column = o.label_column;
+    const Eigen::MatrixXd x = read_data_matrix(o.input, csv);
+    if (o.mode == "pyod") {
+      save_model(PyodHbosd::fit(x, pyod_params(o)), o.output);
+    } else {
+      save_model(Hbosd::fit(x, default_params(o)), o.output);
+    }
+    std::fprintf(stderr, "hbos-score fit: %s model of %lld rows x %lld features written to %s\n",
+                 o.mode.c_str(), static_cast<long long>(x.rows()), static_cast<long long>(x.cols()),
+                 o.output.c_str());
+    return 0;
+  } catch (const CsvError& e) {
+    std::fprintf(stderr, "%s\n", e.what());
+    return kExitBadInput;
+  } catch (const NpyError& e) {
+    std::fprintf(stderr, "hbos-score fit: error: %s\n", e.what());
+    return kExitBadInput;
+  } catch (const std::invalid_argument& e) {
+    // Data or parameters the model rejects; a model file that cannot be written is reported by
+    // the library as InvalidArgument too, naming the path.
+    const bool write_error =
+        std::string(e.what()).find("cannot write") != std::string::npos ||
+        std::string(e.what()).find("cannot create a temporary") != std::string::npos;
+    std::fprintf(stderr, "hbos-score fit: error: %s\n", e.what());
+    return write_error ? kExitError : kExitBadInput;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "hbos-score fit: error: %s\n", e.what());
+    return kExitError;
+  }
+}
+
+}  // namespace hbos::cli

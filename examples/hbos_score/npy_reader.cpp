@@ -1,0 +1,148 @@
+#include "npy_reader.hpp"
+
+#include <array>
+#include <cstdint>
+#include <cstring>
+#include <fstream>
+#include <limits>
+#include <string_view>
+#include <vector>
+
+namespace hbos::cli {
+namespace {
+
+[[noreturn]] void fail(const std::string& path, const std::string& message) {
+  throw NpyError(path + ": " + message);
+}
+
+/// The value of `key` in the header dict (`'key': value`), up to the next top-level comma.
+std::string_view dict_value(const std::string& path, std::string_view header,
+                            std::string_view key) {
+  const std::string quoted = "'" + std::string(key) + "'";
+  const std::size_t at = header.find(quoted);
+  if (at == std::string_view::npos) fail(path, "the .npy header has no '" + std::string(key) + "'");
+  std::size_t i = header.find(':', at + quoted.size());
+  if (i == std::string_view::npos)
+    fail(path, "malformed .npy header near '" + std::string(key) + "'");
+  ++i;
+  while (i < header.size() && header[i] == ' ') ++i;
+  std::size_t end = i;
+  int depth = 0;
+  while (end < header.size() && (depth > 0 || (header[end] != ',' && header[end] != '}'))) {
+    if (header[end] == '(') ++depth;
+    if (header[end] == ')') --depth;
+    ++end;
+  }
+  return header.substr(i, end - i);
+}
+
+/// The dimensions of a shape tuple such as `(378, 30)`, `(378,)`.
+std::vector<long long> parse_shape(const std::string& path, std::string_view text) {
+  if (text.size() < 2 || text.front() != '(' || text.back() != ')')
+    fail(path, "the .npy shape '" + std::string(text) + "' is not a tuple");
+  std::vector<long long> dims;
+  std::size_t i = 1;
+  while (i + 1 < text.size()) {
+    while (i + 1 < text.size() && (text[i] == ' ' || text[i] == ',')) ++i;
+    if (i + 1 >= text.size()) break;
+    long long v = 0;
+    std::size_t digits = 0;
+    while (i + 1 < text.size() && text[i] >= '0' && text[i] <= '9') {
+      if (v > std::numeric_limits<long long>::max() / 10) fail(path, "the .npy shape overflows");
+      v = v * 10 + (text[i] - '0');
+      ++i;
+      ++digits;
+    }
+    if (digits == 0)
+      fail(path, "the .npy shape '" + std::string(text) + "' is not a tuple of sizes");
+    dims.push_back(v);
+  }
+  return dims;
+}
+
+}  // namespace
+
+NpyArray read_npy(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) fail(path, std::string("cannot open: ") + std::strerror(errno));
+  std::array<char, 8> magic{};
+  if (!in.read(magic.data(), magic.size()) || std::memcmp(magic.data(), "\x93NUMPY", 6) != 0)
+    fail(path, "not a .npy file (no \\x93NUMPY magic)");
+  const auto major = static_cast<unsigned char>(magic[6]);
+  if (major < 1 || major > 3)
+    fail(path,
+         "unsupported .npy format version " + std::to_string(major) + " (1, 2 or 3 are read)");
+  std::uint32_t header_len = 0;
+  std::array<unsigned char, 4> len{};
+  const std::streamsize len_size = major == 1 ? 2 : 4;
+  if (!in.read(reinterpret_cast<char*>(len.data()), len_size)) fail(path, "truncated .npy header");
+  for (std::streamsize i = len_size; i-- > 0;)
+    header_len = (header_len << 8) | len[static_cast<std::size_t>(i)];
+  if (header_len > (1U << 20))
+    fail(path, "the .npy header claims " + std::to_string(header_len) + " bytes");
+  std::string header(header_len, '\0');
+  if (!in.read(header.data(), static_cast<std::streamsize>(header_len)))
+    fail(path, "truncated .npy header");
+
+  const std::string_view descr = dict_value(path, header, "descr");
+  NpyArray out;
+  if (descr == "'<f8'") {
+    out.float32 = false;
+  } else if (descr == "'<f4'") {
+    out.float32 = true;
+  } else {
+    fail(path, "dtype " + std::string(descr) +
+                   " is not supported (little-endian float64 '<f8' or float32 '<f4' are read)");
+  }
+  const std::string_view order = dict_value(path, header, "fortran_order");
+  if (order != "False" && order != "True")
+    fail(path, "fortran_order '" + std::string(order) + "' is not True or False");
+  const bool fortran = order == "True";
+  const std::vector<long long> dims = parse_shape(path, dict_value(path, header, "shape"));
+  if (dims.empty() || dims.size() > 2)
+    fail(path, "the array has " + std::to_string(dims.size()) + " dimensions (1 or 2 are read)");
+  const long long rows = dims[0];
+  const long long cols = dims.size() == 2 ? dims[1] : 1;
+  if (rows <= 0 || cols <= 0) fail(path, "the array is empty");
+  if (rows > std::numeric_limits<Eigen::Index>::max() / cols / 8)
+    fail(path, "the array shape is too large");
+
+  const auto count = static_cast<std::size_t>(rows * cols);
+  const std::size_t width = out.float32 ? 4 : 8;
+  std::vector<char> bytes(count * width);
+  if (!in.read(bytes.data(), static_cast<std::streamsize>(bytes.size())))
+    fail(path, "truncated data: the header declares " + std::to_string(rows) + " x " +
+                   std::to_string(cols) + " values of " + std::to_string(width) + " bytes");
+  if (in.peek() != std::char_traits<char>::eof())
+    fail(path, "trailing bytes after the " + std::to_string(count) + " declared values");
+
+  out.values.resize(rows, cols);
+  for (std::size_t k = 0; k < count; ++k) {
+    double v;
+    if (out.float32) {
+      float f;
+      std::memcpy(&f, bytes.data() + k * 4, 4);
+      v = static_cast<double>(f);
+    } else {
+      std::memcpy(&v, bytes.data() + k * 8, 8);
+    }
+    // C order: k = i * cols + j; Fortran order: k = j * rows + i (= the column-major index).
+    const auto ki = static_cast<Eigen::Index>(k);
+    if (fortran) {
+      out.values.data()[ki] = v;
+    } else {
+      out.values(ki / cols, ki % cols) = v;
+    }
+  }
+  return out;
+}
+
+Eigen::MatrixXd read_data_matrix(const std::string& path, const CsvOptions& csv) {
+  constexpr std::string_view suffix = ".npy";
+  if (path.size() >= suffix.size() &&
+      path.compare(path.size() - suffix.size(), suffix.size(), suffix) == 0)
+    return read_npy(path).values;
+  return read_csv(path, csv).features;
+}
+
+}  // namespace hbos::cli
