@@ -91,7 +91,7 @@ TEST_CASE("person without mask: the default screen removes most of its matches",
   CHECK(t.static_loss_share < 0.20);
 
   // Without a screen every person match survives: the labels and counts are live.
-  config.screen.strategy = "none";
+  config.screen.select("none");
   const Outcome unscreened = track_embedded(config, 12);
   CHECK(unscreened.run.totals.person_matches == t.person_matches);
   CHECK(*unscreened.run.totals.person_survival_share == 1.0);

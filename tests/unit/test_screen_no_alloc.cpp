@@ -23,11 +23,16 @@ TEST_CASE("screening allocates nothing after warm-up", "[reprojection][alloc]") 
     c.masked_person_share = 0.05;
     scenes.push_back(hbos_test::make_scene(c));
   }
-  hbos::HbosScreen with_angle;
+  hbos::HbosScreen with_angle = hbos::HbosScreen::magnitude_only();
   with_angle.angle = hbos::AngleFeature::AboveNoise;
-  const std::vector<hbos::ScreenStrategy> strategies{
-      hbos::HbosScreen{},     hbos::HbosScreen::paper(), with_angle,     hbos::ChiSquareGate{},
-      hbos::FixedPixelGate{}, hbos::QuantileGate{},      hbos::MadGate{}};
+  const std::vector<hbos::ScreenStrategy> strategies{hbos::HbosScreen{},
+                                                     hbos::HbosScreen::paper(),
+                                                     hbos::HbosScreen::magnitude_only(),
+                                                     with_angle,
+                                                     hbos::ChiSquareGate{},
+                                                     hbos::FixedPixelGate{},
+                                                     hbos::QuantileGate{},
+                                                     hbos::MadGate{}};
   const hbos::PinholeCamerad camera;
 
   for (const auto& strategy : strategies) {

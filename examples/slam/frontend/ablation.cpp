@@ -42,7 +42,7 @@ std::vector<AblationRow> run_ablation(const Config& base, const RgbdSequence& se
       for (int i = 0; i < n; ++i) frames.push_back(source.frame(i));
 
       for (const std::string& screen : screens) {
-        config.screen.strategy = screen;
+        config.screen.select(screen);
         const RunResult run = run_tracker(
             [&](int i) { return frames[static_cast<std::size_t>(i)]; }, n, config, camera, nullptr);
         const Trajectory estimate = estimate_of(run, "hbos-slam");

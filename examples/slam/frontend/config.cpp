@@ -14,16 +14,29 @@ const char* to_string(MaskSource source) {
       return "degraded";
     case MaskSource::kDetector:
       return "detector";
+    case MaskSource::kFiles:
+      return "files";
   }
   return "?";
 }
 
 MaskSource parse_mask_source(const std::string& name) {
-  for (const MaskSource s :
-       {MaskSource::kNone, MaskSource::kExact, MaskSource::kDegraded, MaskSource::kDetector}) {
+  for (const MaskSource s : {MaskSource::kNone, MaskSource::kExact, MaskSource::kDegraded,
+                             MaskSource::kDetector, MaskSource::kFiles}) {
     if (name == to_string(s)) return s;
   }
-  throw InvalidArgument("mask '" + name + "' is not one of none, exact, degraded, detector");
+  throw InvalidArgument("mask '" + name + "' is not one of none, exact, degraded, detector, files");
+}
+
+void ScreenStageConfig::select(const std::string& strategy_name) {
+  if (strategy_name == "none") {
+    screen.reset();
+  } else {
+    hbos::ScreenConfig parsed;
+    parsed.strategy = hbos::parse_screen_strategy(strategy_name);  // throws naming the choices
+    screen = parsed;
+  }
+  name = strategy_name;
 }
 
 const char* to_string(RoughPoseMethod method) {

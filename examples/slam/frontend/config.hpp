@@ -3,8 +3,12 @@
 /// The one configuration of the mini-SLAM front end: plain defaulted fields, grouped by stage in
 /// the order the tracker runs them. Each stage is constructed with its own group only.
 
-#include <Eigen/Core>
+#include "frontend/map/map_config.hpp"
 
+#include <Eigen/Core>
+#include <hbos/screening/strategies.hpp>
+
+#include <optional>
 #include <string>
 
 namespace hbos::slam {
@@ -26,6 +30,9 @@ struct ScenarioConfig {
   double depth_m = 0.7;             ///< [m] median depth the person is placed at
   double start_x_px = 40.0;         ///< [px] left edge of the cut-out in the first frame
   double speed_px_per_frame = 5.5;  ///< [px/frame] sideways motion in the image, + = right
+  /// Ground-truth object ids per frame (0 = static), the label when no person is composited;
+  /// empty: `<dataset>/objects` when that folder exists (frontend/mask_files.hpp).
+  std::string objects_dir;
 };
 
 /// Which dynamic-object mask the feature extractor avoids.
@@ -34,6 +41,13 @@ enum class MaskSource {
   kExact,     ///< the composited person's own mask (an oracle segmentation)
   kDegraded,  ///< the exact mask eroded, its lower body removed, missing every N-th frame
   kDetector,  ///< Yolo-Fastest body boxes, filled as rectangles
+  kFiles,     ///< one image per frame from MaskConfig::files_dir (frontend/mask_files.hpp)
+};
+
+/// How mask files mark the dynamic pixels.
+enum class MaskConvention {
+  kDynaSlam,        ///< 0 = dynamic, non-zero = static (DynaSLAM's and the renderer's files)
+  kNonzeroDynamic,  ///< non-zero = dynamic
 };
 
 struct MaskConfig {
@@ -46,6 +60,9 @@ struct MaskConfig {
   float detector_confidence = 0.5f;  ///< objectness x class score to accept a box
   float detector_nms = 0.45f;        ///< IoU of non-maximum suppression
   int detector_input_px = 320;       ///< square network input size (the model's own)
+  std::string files_dir;             ///< kFiles: folder of masks, matched by file name or stamp
+  MaskConvention files_convention = MaskConvention::kDynaSlam;
+  double files_max_difference = 0.02;  ///< [s] stamp matching tolerance of the mask files
 };
 
 /// ORB as ORB-SLAM2 configures it (TUM yaml files).
@@ -84,10 +101,16 @@ struct RoughPoseConfig {
 
 /// The residual screen (hbos's reprojection screen or a baseline).
 struct ScreenStageConfig {
-  /// default | paper | chi2 | fixed | quantile | mad | none
-  std::string strategy = "default";
+  /// hbos's screen: a strategy with its settings (hbos/screening/strategies.hpp); nullopt = no
+  /// screen (the pose is refined on every match). Set by name with select().
+  std::optional<hbos::ScreenConfig> screen = hbos::ScreenConfig{};
+  std::string name = "default";   ///< the name it was selected by, for tables and logs
   int rounds = 4;                 ///< screen -> refine -> re-screen rounds (ORB-SLAM2 runs 4)
   Eigen::Index min_inliers = 10;  ///< stop re-fitting below this many survivors
+
+  /// Selects a strategy of hbos::named_strategies() by name, or "none".
+  /// \throws hbos::InvalidArgument naming the value and the choices.
+  void select(const std::string& strategy_name);
 };
 
 /// Gauss-Newton pose refinement on the survivors (hbos/screening/pose_refinement.hpp).
@@ -103,8 +126,15 @@ struct OutputConfig {
   bool progress = true;   ///< a progress line per frame on stderr
 };
 
+/// Which tracker runs (`--tracker`).
+enum class TrackerKind {
+  kFrame,  ///< frame-to-frame odometry (frontend/tracker.hpp)
+  kMap,    ///< tracking against a local map of keyframes (frontend/map/map_tracker.hpp)
+};
+
 /// Everything the front end needs, one group per stage.
 struct Config {
+  TrackerKind tracker = TrackerKind::kFrame;
   DatasetConfig dataset;
   ScenarioConfig scenario;
   MaskConfig mask;
@@ -113,6 +143,7 @@ struct Config {
   RoughPoseConfig rough_pose;
   ScreenStageConfig screen;
   RefinementConfig refinement;
+  MapConfig map;  ///< the map tracker's own stages (frontend/map/map_config.hpp)
   OutputConfig output;
 };
 
@@ -123,5 +154,9 @@ struct Config {
 /// `ransac`, `constant-velocity`.
 [[nodiscard]] const char* to_string(RoughPoseMethod method);
 [[nodiscard]] RoughPoseMethod parse_rough_pose_method(const std::string& name);
+/// `frame`, `map`.
+[[nodiscard]] inline const char* to_string(TrackerKind kind) {
+  return kind == TrackerKind::kMap ? "map" : "frame";
+}
 
 }  // namespace hbos::slam

@@ -2,7 +2,8 @@
 /// \file
 /// Stage 4: the residual screen. Each match's 3D point is reprojected with the rough pose; the
 /// residual to its keypoint is judged by hbos's reprojection screen (or a baseline), in
-/// ORB-SLAM2-style rounds: screen -> refine the pose on the survivors -> re-screen.
+/// ORB-SLAM2-style rounds: screen -> refine the pose on the survivors -> re-screen. The rounds
+/// loop is written here: the library screens one round per call.
 ///
 /// This file (and residual_screen.cpp) is the front end's only contact with hbos's screening
 /// headers (hbos/screening/), so a change there touches one place.
@@ -21,7 +22,7 @@
 
 namespace hbos::slam {
 
-/// The names `--screen` accepts: default, paper, chi2, fixed, quantile, mad, none.
+/// The names `--screen` accepts: those of hbos::named_strategies(), then `none`.
 [[nodiscard]] const std::vector<std::string>& screen_strategy_names();
 
 /// What the screen decided for one frame's matches (index i = match i).
@@ -30,14 +31,26 @@ struct ScreenOutcome {
   std::vector<double> magnitude;     ///< the residual feature decided on (see `statistic`)
   std::vector<double> score;         ///< the strategy's score, higher = worse
   double threshold = std::numeric_limits<double>::quiet_NaN();  ///< cut on the score; NaN: none
-  /// The cut in magnitude units where the strategy is a gate on the magnitude (fixed, chi2,
-  /// quantile, mad); NaN for HBOS, whose cut is on a histogram score.
+  /// The cut in magnitude units where the decision is a gate on the magnitude (fixed, chi2,
+  /// quantile, mad, and HBOS's noise gate); NaN otherwise (the literal and magnitude-only HBOS).
   double magnitude_cut = std::numeric_limits<double>::quiet_NaN();
   std::string statistic;   ///< "residual_px", "residual_whitened", "magnitude", ...
-  std::string unit;        ///< "px" or "px/sigma"
+  std::string unit;        ///< of the magnitude: "px" or "px/sigma"
+  std::string score_unit;  ///< of score and threshold: "score", "px", "px/sigma", "px^2/sigma^2"
   int rounds = 0;          ///< screenings run
   double screen_us = 0.0;  ///< [us] time spent screening (refinement rounds excluded)
   double refine_us = 0.0;  ///< [us] time of the refinements between rounds
+};
+
+/// Evidence about each match beyond its residual (index i = match i). Every field is optional:
+/// an empty vector means "not available" and the screen does without it.
+struct MatchEvidence {
+  std::vector<double> depth_m;           ///< [m] depth of the observed keypoint; <= 0: unknown
+  std::vector<double> mask_distance_px;  ///< [px] to the nearest masked pixel; inf: no mask
+  std::vector<std::uint8_t> in_box;      ///< 1 = inside a detector box but outside its mask
+  /// The persistence prior the caller keeps per track or map point: in [0, 1], the
+  /// forgetting-weighted share of past frames in which this point was screened out.
+  std::vector<double> outlier_history;
 };
 
 class ResidualScreen {
@@ -50,13 +63,14 @@ class ResidualScreen {
 
   /// Screens the matches (point `points_prev[i]` observed at `observed[i]`, scale sigma
   /// `sigma[i]`) under `T_cur_prev`, which the rounds refine in place with `refiner`. Points
-  /// behind the camera under the pose are rejected without being screened.
+  /// behind the camera under the pose are rejected without being screened. `evidence` adds
+  /// what the caller knows beyond the residuals (see MatchEvidence).
   ScreenOutcome screen(const std::vector<Eigen::Vector3d>& points_prev,
                        const std::vector<Eigen::Vector2d>& observed,
                        const std::vector<double>& sigma, Eigen::Isometry3d& T_cur_prev,
-                       const PoseRefiner& refiner);
+                       const PoseRefiner& refiner, const MatchEvidence& evidence = {});
 
-  [[nodiscard]] const std::string& name() const { return config_.strategy; }
+  [[nodiscard]] const std::string& name() const { return config_.name; }
 
  private:
   struct Impl;

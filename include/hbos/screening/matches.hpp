@@ -12,6 +12,12 @@
 /// its keypoint (ORB-SLAM: sigma_i = 1.2^octave, so sigma_i^2 = 1.2^(2 octave) is the variance
 /// factor of its level) and a prior flag "on a dynamic mask" (from a detector or segmentation).
 ///
+/// Optional evidence per match, unknown (NaN) unless set: the depth of the predicted point in
+/// the current camera [m] (it groups neighbours in 3-D), the distance from the keypoint to the
+/// nearest pixel of a dynamic-object mask [px], and the caller's persistence prior — the
+/// share, with forgetting, of past frames in which this track or map point was screened out.
+/// The screen stays stateless: that history is the caller's to keep and pass in.
+///
 /// Threading: `Matches` is a plain container; concurrent const access is safe.
 
 #include <Eigen/Core>
@@ -53,6 +59,9 @@ class Matches {
     observed_right_.clear();
     sigma_.clear();
     flag_.clear();
+    depth_.clear();
+    mask_distance_.clear();
+    history_.clear();
     n_stereo_ = 0;
   }
 
@@ -68,6 +77,9 @@ class Matches {
     observed_right_.reserve(k);
     sigma_.reserve(k);
     flag_.reserve(k);
+    depth_.reserve(k);
+    mask_distance_.reserve(k);
+    history_.reserve(k);
   }
 
   /// Appends a monocular match.
@@ -102,6 +114,37 @@ class Matches {
     if (has_right(i)) predicted_right_[k] = predicted_u_right;
     predicted_x_[k] = predicted.x();
     predicted_y_[k] = predicted.y();
+  }
+
+  /// Sets the depth of match i's predicted point in the current camera [m], finite and > 0.
+  void set_depth(Index i, Scalar depth_m) {
+    check_index(i);
+    detail::require(std::isfinite(depth_m) && depth_m > Scalar(0), "match ", i,
+                    ": depth must be finite and > 0 m, got ", depth_m);
+    depth_[static_cast<std::size_t>(i)] = depth_m;
+  }
+  /// Sets the distance from match i's keypoint to the nearest dynamic-mask pixel [px], >= 0
+  /// (+inf: the frame has a mask but no masked pixel; leave unset when there is no mask at all).
+  void set_mask_distance(Index i, Scalar distance_px) {
+    check_index(i);
+    detail::require(!std::isnan(distance_px) && distance_px >= Scalar(0), "match ", i,
+                    ": mask distance must be >= 0 px, got ", distance_px);
+    mask_distance_[static_cast<std::size_t>(i)] = distance_px;
+  }
+  /// Sets the caller's persistence prior of match i, in [0, 1] (see the file comment).
+  void set_outlier_history(Index i, Scalar history) {
+    check_index(i);
+    detail::require(history >= Scalar(0) && history <= Scalar(1), "match ", i,
+                    ": outlier history must lie in [0, 1], got ", history);
+    history_[static_cast<std::size_t>(i)] = history;
+  }
+  /// Depth [m], mask distance [px] and outlier history of match i; NaN when not set.
+  [[nodiscard]] Scalar depth(Index i) const { return depth_[static_cast<std::size_t>(i)]; }
+  [[nodiscard]] Scalar mask_distance(Index i) const {
+    return mask_distance_[static_cast<std::size_t>(i)];
+  }
+  [[nodiscard]] Scalar outlier_history(Index i) const {
+    return history_[static_cast<std::size_t>(i)];
   }
 
   [[nodiscard]] Index size() const { return static_cast<Index>(sigma_.size()); }
@@ -161,6 +204,10 @@ class Matches {
     observed_right_.push_back(observed_right);
     sigma_.push_back(sigma);
     flag_.push_back(flag ? 1 : 0);
+    const Scalar unknown = std::numeric_limits<Scalar>::quiet_NaN();
+    depth_.push_back(unknown);
+    mask_distance_.push_back(unknown);
+    history_.push_back(unknown);
   }
   void check_index(Index i) const {
     detail::require(i >= 0 && i < size(), "match index ", i, " out of range [0, ", size(), ")");
@@ -170,6 +217,7 @@ class Matches {
   std::vector<Scalar> predicted_right_, observed_right_;  // NaN for monocular matches
   std::vector<Scalar> sigma_;
   std::vector<std::uint8_t> flag_;
+  std::vector<Scalar> depth_, mask_distance_, history_;  // NaN = not set
   Index n_stereo_ = 0;
 };
 

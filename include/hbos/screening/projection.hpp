@@ -1,8 +1,7 @@
 #pragma once
 /// \file
-/// Reprojection-residual screening in one include: the screen (screen.hpp), its strategies
-/// (screen_strategies.hpp), its inputs (residuals.hpp), and conveniences for callers that hold
-/// 3D map points, a pose and pinhole intrinsics rather than predicted pixels.
+/// Conveniences for callers that hold 3-D map points, a pose and pinhole intrinsics rather than
+/// predicted pixels: filling the matches, and the rounds of ORB-SLAM2's pose optimisation.
 ///
 /// Where it goes in an ORB-SLAM2-style tracker: after the rough pose (motion model or reference
 /// keyframe), before Optimizer::PoseOptimization; see docs/screening.md for the snippet.
@@ -61,6 +60,7 @@ void project_matches(const Eigen::MatrixBase<DerivedPoints>& points_world,
     matches.add(camera.project(p_c), Eigen::Matrix<Scalar, 2, 1>(observed.col(i)),
                 static_cast<Scalar>(sigma.derived().coeff(i)),
                 static_cast<bool>(on_dynamic_mask.derived().coeff(i)));
+    matches.set_depth(i, p_c.z());
   }
 }
 
@@ -82,10 +82,14 @@ struct IteratedScreenOptions {
   PoseRefinementOptions refinement{};  ///< the Gauss-Newton refit on each round's inliers
 };
 
-/// Screen -> refine the pose on the inliers -> re-project -> re-screen, `options.rounds` times.
-/// `matches` must hold the projections of `points_world` (3 x n [m]) under `T_cur_world`, e.g.
-/// from project_matches; on return both are updated to the refined pose, and the result is the
-/// screen under it.
+/// The rounds of ORB-SLAM2's PoseOptimization, written out for callers that hold 3-D points:
+/// screen -> refine the pose on the inliers -> re-project -> re-screen, `options.rounds`
+/// screenings (fewer when the inliers drop below `options.min_inliers`). `matches` must hold
+/// the projections of `points_world` (3 x n [m]) under `T_cur_world`, e.g. from project_matches;
+/// on return both are updated to the refined pose, and the result is the last screen's. Every
+/// round screens all matches again, so a match rejected under the rough pose can come back.
+/// A caller with its own optimiser writes the same loop around its own refit (the SLAM example's
+/// tracker does).
 template <class Scalar, class DerivedPoints>
 const ScreenResult<Scalar>& screen_and_refine_pose(
     ReprojectionScreen<Scalar>& screen, const Eigen::MatrixBase<DerivedPoints>& points_world,
@@ -94,23 +98,28 @@ const ScreenResult<Scalar>& screen_and_refine_pose(
   detail::require(points_world.rows() == 3 && points_world.cols() == matches.size(),
                   "points_world must be 3 x ", matches.size(), ", got ", points_world.rows(), " x ",
                   points_world.cols());
+  detail::require(options.rounds >= 1, "IteratedScreenOptions rounds must be >= 1, got ",
+                  options.rounds);
   detail::require(options.min_inliers >= 3, "IteratedScreenOptions min_inliers must be >= 3, got ",
                   options.min_inliers);
   using Vec3 = Eigen::Matrix<Scalar, 3, 1>;
-  auto refit = [&](const ScreenResult<Scalar>& result, Matches<Scalar>& m) {
-    if (result.n_inliers() < options.min_inliers) return false;
+  for (int round = 1;; ++round) {
+    const ScreenResult<Scalar>& result = screen.screen(matches);
+    if (round == options.rounds || result.n_inliers() < options.min_inliers) return result;
     refine_pose(
-        m.size(), [&](Eigen::Index i) { return Vec3(points_world.col(i)); },
-        [&](Eigen::Index i) { return m.observed(i); }, [&](Eigen::Index i) { return m.sigma(i); },
+        matches.size(), [&](Eigen::Index i) { return Vec3(points_world.col(i)); },
+        [&](Eigen::Index i) { return matches.observed(i); },
+        [&](Eigen::Index i) { return matches.sigma(i); },
         [&](Eigen::Index i) { return result.inlier(i); }, camera, T_cur_world, options.refinement);
-    for (Eigen::Index i = 0; i < m.size(); ++i) {
+    for (Eigen::Index i = 0; i < matches.size(); ++i) {
       const Vec3 p_c = T_cur_world * Vec3(points_world.col(i));
       // A point pushed behind the camera by the refit keeps its old prediction.
-      if (p_c.z() > Scalar(0)) m.set_predicted(i, camera.project(p_c));
+      if (p_c.z() > Scalar(0)) {
+        matches.set_predicted(i, camera.project(p_c));
+        matches.set_depth(i, p_c.z());
+      }
     }
-    return true;
-  };
-  return screen.screen_iterated(matches, refit, options.rounds);
+  }
 }
 
 }  // namespace hbos

@@ -16,6 +16,9 @@
 #include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <functional>
+#include <utility>
 #include <vector>
 
 #include "hbos/error.hpp"
@@ -64,11 +67,13 @@ inline void validate(const ResidualOptions& o) {
 template <class Scalar>
 struct FieldSamples {
   std::vector<Scalar> u, v, rx, ry, w;
+  mutable std::vector<std::pair<Scalar, Scalar>> sorted;  // scratch of the weighted median
   void clear() {
     for (auto* c : {&u, &v, &rx, &ry, &w}) c->clear();
   }
   void reserve(std::size_t n) {
     for (auto* c : {&u, &v, &rx, &ry, &w}) c->reserve(n);
+    sorted.reserve(n);
   }
   [[nodiscard]] std::size_t size() const { return w.size(); }
 };
@@ -92,6 +97,45 @@ void collect_field_samples(const Matches<Scalar>& matches, const Use& use,
   }
 }
 
+/// The most cells balance_by_cell uses (64 a side), so a workspace can reserve them.
+inline constexpr std::size_t kMaxBalanceCells = 64 * 64;
+
+/// Caps the weight of crowded image cells: with the samples binned into square cells of
+/// `cell_px` over their predicted pixels, a cell holding more than the average occupied cell's
+/// count has its samples' weights scaled down to that count. A dynamic object crowding a few
+/// cells then cannot outvote the background spread over the image. `counts` is scratch.
+template <class Scalar>
+void balance_by_cell(FieldSamples<Scalar>& samples, double cell_px,
+                     std::vector<std::uint32_t>& counts, std::vector<std::uint32_t>& cell_of) {
+  const std::size_t m = samples.size();
+  if (m == 0 || !(cell_px > 0.0)) return;
+  const auto [u_lo, u_hi] = std::minmax_element(samples.u.begin(), samples.u.end());
+  const auto [v_lo, v_hi] = std::minmax_element(samples.v.begin(), samples.v.end());
+  constexpr double kMaxSide = 64.0;  // bounds the grid whatever the input
+  const double cell = std::max({cell_px, static_cast<double>(*u_hi - *u_lo) / (kMaxSide - 1.0),
+                                static_cast<double>(*v_hi - *v_lo) / (kMaxSide - 1.0)});
+  const auto nx = static_cast<std::size_t>(static_cast<double>(*u_hi - *u_lo) / cell) + 1;
+  const auto ny = static_cast<std::size_t>(static_cast<double>(*v_hi - *v_lo) / cell) + 1;
+  counts.assign(nx * ny, 0);
+  cell_of.resize(m);
+  const Scalar u0 = *u_lo, v0 = *v_lo;
+  for (std::size_t i = 0; i < m; ++i) {
+    const auto cx =
+        std::min(static_cast<std::size_t>(static_cast<double>(samples.u[i] - u0) / cell), nx - 1);
+    const auto cy =
+        std::min(static_cast<std::size_t>(static_cast<double>(samples.v[i] - v0) / cell), ny - 1);
+    cell_of[i] = static_cast<std::uint32_t>(cy * nx + cx);
+    ++counts[cell_of[i]];
+  }
+  std::size_t occupied = 0;
+  for (const std::uint32_t c : counts) occupied += c > 0 ? 1 : 0;
+  const double cap = static_cast<double>(m) / static_cast<double>(occupied);
+  for (std::size_t i = 0; i < m; ++i) {
+    const auto c = static_cast<double>(counts[cell_of[i]]);
+    if (c > cap) samples.w[i] *= static_cast<Scalar>(cap / c);
+  }
+}
+
 /// The dominant residual of `samples`: the coordinate-wise median, then `iterations` steps of a
 /// mean shift with a flat window of `window` whitened pixels, each residual weighted by its
 /// information 1/sigma^2. (0, 0) without samples. `scratch` grows to the sample count.
@@ -101,12 +145,30 @@ Eigen::Matrix<Scalar, 2, 1> dominant_residual(const FieldSamples<Scalar>& sample
   const std::size_t m = samples.size();
   Eigen::Matrix<Scalar, 2, 1> c(0, 0);
   if (m == 0) return c;
+  const bool weighted = std::adjacent_find(samples.w.begin(), samples.w.end(),
+                                           std::not_equal_to<Scalar>()) != samples.w.end();
   for (int axis = 0; axis < 2; ++axis) {
     const std::vector<Scalar>& r = axis == 0 ? samples.rx : samples.ry;
-    scratch.assign(r.begin(), r.end());
-    const auto mid = scratch.begin() + static_cast<std::ptrdiff_t>(m / 2);
-    std::nth_element(scratch.begin(), mid, scratch.end());
-    c(axis) = *mid;
+    if (!weighted) {
+      scratch.assign(r.begin(), r.end());
+      const auto mid = scratch.begin() + static_cast<std::ptrdiff_t>(m / 2);
+      std::nth_element(scratch.begin(), mid, scratch.end());
+      c(axis) = *mid;
+      continue;
+    }
+    // Unequal weights (cell balancing, sigma): the weighted median, so the start of the mean
+    // shift is as hard to pull as the weights say.
+    std::vector<std::pair<Scalar, Scalar>>& pairs = samples.sorted;
+    pairs.resize(m);
+    for (std::size_t i = 0; i < m; ++i) pairs[i] = {r[i], samples.w[i]};
+    std::sort(pairs.begin(), pairs.end(),
+              [](const auto& a, const auto& b) { return a.first < b.first; });
+    Scalar total = 0;
+    for (std::size_t i = 0; i < m; ++i) total += pairs[i].second;
+    Scalar below = 0;
+    std::size_t k = 0;
+    while (k + 1 < m && below + pairs[k].second < total / Scalar(2)) below += pairs[k++].second;
+    c(axis) = pairs[k].first;
   }
   const auto window2 = static_cast<Scalar>(window * window);
   for (int it = 0; it < iterations; ++it) {

@@ -1,23 +1,32 @@
 #pragma once
 /// \file
-/// The reprojection screen: turns one frame's matches into scores, a threshold and an inlier
-/// mask, with any strategy of screen_strategies.hpp, and the iterated screen -> refit -> re-screen
-/// mode that ORB-SLAM2's four optimisation rounds follow.
+/// The reprojection screen: turns one frame's matches into scores, a cut and an inlier mask,
+/// with any strategy of strategies.hpp. One call is one round; the rounds of ORB-SLAM2's pose
+/// optimisation (screen -> refine -> re-project -> re-screen) belong to the caller, as
+/// PoseOptimization owns its loop (projection.hpp has a small helper that writes it).
 ///
 /// The HBOS strategy, per frame (n matches, F = the fit set: unflagged matches unless fewer than
 /// `min_fit_matches`, or all):
 ///  1. r_i = observed_i - predicted_i [px]; c(p) = the dominant residual field of F
-///     (residuals.hpp: constant or affine in the predicted pixel p), or 0.
-///  2. m_i = |r_i - c(p_i)| / sigma_i (or unwhitened), clipped at `magnitude_clip`;
-///     a_i = atan2 of r_i - c(p_i) when an angle feature is used.
-///  3. One histogram per feature fitted on F (histogram.hpp): contribution
-///     c_j(v) = log(h_max / h(bin of v)) (Goldstein & Dengel, eq. 1); Upper tail for m.
-///  4. score_i = sum_j c_j (the paper's eq. 5 with natural logs).
-///  5. threshold t from the rule on the scores of F (the paper's eq. 6 for `paper()`).
-///  6. inlier_i = score_i <= t, or m_i <= keep_below (noise floor); flagged matches are rejected
-///     under FlaggedPolicy::Reject.
+///     (residual_field.hpp: constant or affine in the predicted pixel p), with crowded image
+///     cells capped (FieldFit), or 0.
+///  2. d_i = (r_i - c(p_i)) / sigma_i, m_i = |d_i| (or unwhitened), clipped at `magnitude_clip`.
+///  With the noise gate (the default):
+///  3. s = the robust noise scale of m over F (noise_scale.hpp), G = max(floor, scales s).
+///  4. Evidence per match: coherence l_i (neighbourhood.hpp), mask neighbourhood, history; each
+///     fires above its floor.
+///  5. B = the matches of F that look static (m <= G, no evidence fired); with
+///     FieldFit::refit_on_static the field is refitted on B and steps 2-5 run once more.
+///  6. One histogram per evidence feature (and the magnitude) fitted on B (histogram.hpp,
+///     Upper tail): contribution c_j(v) = log(h_max / h(bin of v)) (Goldstein & Dengel, eq. 1).
+///     E_i = the sum over the features that fired (the magnitude's counts only with another).
+///  7. reject when m_i > G or E_i > t; score_i = max(t m_i / G, E_i), cut t.
+///  Without it (magnitude_only(), paper()):
+///  3. one histogram per feature (magnitude, optionally angle) fitted on F; score = the sum;
+///     cut from the threshold rule on F's scores (the paper's eq. 6 for `paper()`).
+///  Flagged matches are rejected under FlaggedPolicy::Reject.
 ///
-/// Baselines reuse steps 1 and 5-6 with their own statistic as the score.
+/// Baselines reuse step 1's residuals with their own statistic as the score.
 ///
 /// Threading: a ReprojectionScreen is a workspace: not thread-safe; use one per thread. Its
 /// result is valid until the next call. After a warm-up call with the largest frame (n matches,
@@ -27,10 +36,14 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "hbos/error.hpp"
 #include "hbos/histogram.hpp"
+#include "hbos/screening/matches.hpp"
+#include "hbos/screening/neighbourhood.hpp"
+#include "hbos/screening/noise_scale.hpp"
 #include "hbos/screening/residual_field.hpp"
 #include "hbos/screening/strategies.hpp"
 #include "hbos/threshold.hpp"
@@ -56,6 +69,23 @@ class ScreenResult {
   [[nodiscard]] Scalar score(Index i) const { return score_[static_cast<std::size_t>(i)]; }
   /// The cut: a match is an outlier when its score is above it (unless kept by the noise floor).
   [[nodiscard]] Scalar threshold() const { return threshold_; }
+  /// The unit of scores and threshold: "score" (HBOS: a sum of log density ratios), "px",
+  /// "px/sigma", or "px^2/sigma^2" (chi^2).
+  [[nodiscard]] const char* unit() const { return unit_; }
+  /// The cut in the magnitude's units (magnitude_unit()) where the decision is a gate on the
+  /// magnitude: the noise gate G of HBOS, the gates' own cut (sqrt for chi^2); NaN otherwise.
+  [[nodiscard]] Scalar magnitude_cut() const { return magnitude_cut_; }
+  /// "px" or "px/sigma".
+  [[nodiscard]] const char* magnitude_unit() const { return magnitude_unit_; }
+  /// The frame's robust noise scale s [px/sigma] (HBOS with the noise gate); NaN otherwise.
+  [[nodiscard]] Scalar noise_scale() const { return noise_scale_; }
+  /// The coherence evidence l_i of match i (log-likelihood ratio, CoherenceEvidence); 0 when
+  /// not computed.
+  [[nodiscard]] Scalar coherence(Index i) const {
+    return coherence_.empty() ? Scalar(0) : coherence_[static_cast<std::size_t>(i)];
+  }
+  /// Matches inside the noise gate rejected on their evidence (HBOS with the noise gate).
+  [[nodiscard]] Index n_rejected_by_evidence() const { return n_evidence_; }
   /// inlier(i) is 1 for a kept match, 0 for a rejected one.
   [[nodiscard]] MaskMap inliers() const { return MaskMap(inlier_.data(), n_); }
   [[nodiscard]] bool inlier(Index i) const { return inlier_[static_cast<std::size_t>(i)] != 0; }
@@ -69,7 +99,7 @@ class ScreenResult {
     return MatrixMap(contribution_.data(), n_, n_features_);
   }
   [[nodiscard]] Index n_features() const { return n_features_; }
-  /// "magnitude", "angle", or the baseline's statistic name, for feature j.
+  /// "magnitude", "angle", "coherence", "mask", "history", or the baseline's statistic name.
   [[nodiscard]] const char* feature_name(Index j) const {
     return feature_names_[static_cast<std::size_t>(j)];
   }
@@ -84,20 +114,22 @@ class ScreenResult {
   [[nodiscard]] Index n_fitted() const { return n_fitted_; }
   /// The dominant residual field subtracted before the magnitude (zero when not centering).
   [[nodiscard]] const ResidualField<Scalar>& field() const { return field_; }
-  /// Screening rounds run (1 for a single screen; see ReprojectionScreen::screen_iterated).
-  [[nodiscard]] int rounds() const { return rounds_; }
 
  private:
   friend class ReprojectionScreen<Scalar>;
   Index n_ = 0;
   Index n_features_ = 0;
-  std::vector<Scalar> score_, magnitude_, contribution_;
+  std::vector<Scalar> score_, magnitude_, contribution_, coherence_;
   std::vector<std::uint8_t> inlier_;
-  const char* feature_names_[2] = {"", ""};
+  const char* feature_names_[4] = {"", "", "", ""};
   Scalar threshold_ = 0;
+  const char* unit_ = "";
+  const char* magnitude_unit_ = "";
+  Scalar magnitude_cut_ = std::numeric_limits<Scalar>::quiet_NaN();
+  Scalar noise_scale_ = std::numeric_limits<Scalar>::quiet_NaN();
+  Index n_evidence_ = 0;
   Index n_inliers_ = 0, n_flagged_ = 0, n_flagged_rejected_ = 0, n_floor_ = 0, n_fitted_ = 0;
   ResidualField<Scalar> field_{};
-  int rounds_ = 0;
 };
 
 /// Screens reprojection matches. Construct once with a config, call `screen` per frame.
@@ -124,30 +156,10 @@ class ReprojectionScreen {
     config_ = config;
   }
 
-  /// Screens one frame. The result stays valid until the next call on this object.
+  /// Screens one frame: one round. The result stays valid until the next call on this object.
   /// \throws InvalidArgument when there are no matches.
   const ScreenResult<Scalar>& screen(const Matches<Scalar>& matches) {
     run(matches);
-    result_.rounds_ = 1;
-    return result_;
-  }
-
-  /// Screen -> refit -> re-screen, `rounds` screenings in all (ORB-SLAM2 runs 4). After each
-  /// screening but the last, `refit(result, matches)` re-estimates the pose from the inliers and
-  /// writes the new predictions into `matches` (Matches::set_predicted); it returns false to stop
-  /// early (e.g. too few inliers). Every round screens *all* matches again, so a match rejected
-  /// under the rough pose can come back, as in ORB-SLAM2.
-  template <class Refit>
-  const ScreenResult<Scalar>& screen_iterated(Matches<Scalar>& matches, Refit&& refit, int rounds) {
-    detail::require(rounds >= 1, "screen_iterated needs rounds >= 1, got ", rounds);
-    int done = 0;
-    for (int r = 0; r < rounds; ++r) {
-      run(matches);
-      ++done;
-      if (r + 1 == rounds) break;
-      if (!refit(static_cast<const ScreenResult<Scalar>&>(result_), matches)) break;
-    }
-    result_.rounds_ = done;
     return result_;
   }
 
@@ -158,13 +170,23 @@ class ReprojectionScreen {
   /// bins its config can produce (FixedWidth: magnitude_clip / width), so that not even the first
   /// frame of that size allocates.
   void reserve(Index n) {
-    detail::require(n >= 1, "reserve needs n >= 1, got ", n);
+    detail::require(n >= 1 && n <= (Index{1} << 31), "reserve needs n in [1, 2^31], got ", n);
     const auto k = static_cast<std::size_t>(n);
-    for (auto* v : {&result_.score_, &result_.magnitude_, &angle_, &fit_values_, &scratch_})
+    for (auto* v : {&result_.score_, &result_.magnitude_, &angle_, &fit_values_, &scratch_, &dx_,
+                    &dy_, &depth_, &coherence_, &proximity_, &history_})
       v->reserve(k);
-    result_.contribution_.reserve(2 * k);
+    result_.contribution_.reserve(4 * k);
     result_.inlier_.reserve(k);
-    angle_used_.reserve(k);
+    for (auto* v : {&angle_used_, &fired_, &looks_static_}) v->reserve(k);
+    cell_of_.reserve(k);
+    result_.coherence_.reserve(k);
+    detail::CoherenceWork<Scalar>& w = coherence_work_;
+    for (auto* v : {&w.dx, &w.dy}) v->reserve(k);
+    w.support.reserve(k);
+    w.cell.reserve(k);
+    for (auto* v : {&w.sx, &w.sy, &w.count, &w.tx, &w.ty, &w.tcount})
+      v->reserve(detail::kMaxCoherenceCells);
+    cell_counts_.reserve(detail::kMaxBalanceCells);
     samples_.reserve(k);
     if (const auto* s = std::get_if<HbosScreen>(&config_.strategy)) {
       // Fitting the extremes [0, clip] makes the histogram take its largest bin count once.
@@ -180,34 +202,54 @@ class ReprojectionScreen {
             Eigen::Map<const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>>(fit_values_.data(), 2),
             s->angle_spec, s->scoring, scratch_, 1);
       }
+      // The evidence histograms: values in [0, 64], bins no narrower than 0.1.
+      evidence_hist_.reserve(641);
     }
   }
 
  private:
+  using Column = Eigen::Map<const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>>;
   void run(const Matches<Scalar>& matches);
   void prepare(const Matches<Scalar>& matches, Index n_features);
   void run_hbos(const Matches<Scalar>& matches, const HbosScreen& s);
+  void run_gated(const Matches<Scalar>& matches, const HbosScreen& s);
   void run_gate(const Matches<Scalar>& matches);
   void finish(const Matches<Scalar>& matches, Scalar floor);
+  template <class Use>
+  void fit_field(const Matches<Scalar>& matches, const HbosScreen& s, const Use& use, double window,
+                 ResidualCenter center);
+  void centred_magnitudes(const Matches<Scalar>& matches, const HbosScreen& s);
+  /// The balanced weight (samples_, as fit_field left it) of the fit set's matches whose
+  /// whitened residual lies within `window` of `field`.
+  [[nodiscard]] Scalar field_support(const Matches<Scalar>& matches,
+                                     const ResidualField<Scalar>& field, double window) const;
+  void gate_and_evidence(const Matches<Scalar>& matches, const HbosScreen& s);
   [[nodiscard]] bool in_fit(const Matches<Scalar>& matches, Index i) const {
     return !fit_unflagged_only_ || !matches.on_dynamic_mask(i);
   }
-  /// Copies the values of the fit set into fit_values_ and returns them as an Eigen column.
-  Eigen::Map<const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>> fit_column(
-      const Matches<Scalar>& matches, const std::vector<Scalar>& values) {
+  /// Copies the values with `use(i)` into fit_values_ and returns them as an Eigen column.
+  template <class Use>
+  Column select(const Matches<Scalar>& matches, const std::vector<Scalar>& values, const Use& use) {
     Index m = 0;
     for (Index i = 0; i < matches.size(); ++i)
-      if (in_fit(matches, i))
-        fit_values_[static_cast<std::size_t>(m++)] = values[static_cast<std::size_t>(i)];
-    return Eigen::Map<const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>>(fit_values_.data(), m);
+      if (use(i)) fit_values_[static_cast<std::size_t>(m++)] = values[static_cast<std::size_t>(i)];
+    return Column(fit_values_.data(), m);
+  }
+  /// The values of the fit set.
+  Column fit_column(const Matches<Scalar>& matches, const std::vector<Scalar>& values) {
+    return select(matches, values, [&](Index i) { return in_fit(matches, i); });
   }
 
   ScreenConfig config_;
   ScreenResult<Scalar> result_;
-  Histogram<Scalar> magnitude_hist_, angle_hist_;
+  Histogram<Scalar> magnitude_hist_, angle_hist_, evidence_hist_;
   std::vector<Scalar> angle_, fit_values_, scratch_;
-  std::vector<std::uint8_t> angle_used_;
+  std::vector<Scalar> dx_, dy_, depth_, coherence_, proximity_, history_;
+  std::vector<std::uint8_t> angle_used_, fired_, looks_static_;
+  std::vector<std::uint32_t> cell_counts_, cell_of_;
   detail::FieldSamples<Scalar> samples_;
+  detail::CoherenceWork<Scalar> coherence_work_;
+  Scalar gate_ = 0, scale_ = 0;
   bool fit_unflagged_only_ = false;
 };
 
@@ -232,6 +274,9 @@ void ReprojectionScreen<Scalar>::prepare(const Matches<Scalar>& matches, Index n
   r.contribution_.resize(k * static_cast<std::size_t>(n_features));
   fit_values_.resize(k);
   r.field_ = ResidualField<Scalar>{};
+  r.magnitude_cut_ = r.noise_scale_ = std::numeric_limits<Scalar>::quiet_NaN();
+  r.n_evidence_ = 0;
+  r.coherence_.clear();
 
   Index flagged = 0;
   for (Index i = 0; i < n; ++i) flagged += matches.on_dynamic_mask(i) ? 1 : 0;
@@ -251,7 +296,67 @@ void ReprojectionScreen<Scalar>::run(const Matches<Scalar>& matches) {
 }
 
 template <class Scalar>
+template <class Use>
+void ReprojectionScreen<Scalar>::fit_field(const Matches<Scalar>& matches, const HbosScreen& s,
+                                           const Use& use, double window, ResidualCenter center) {
+  if (center == ResidualCenter::None) return;
+  detail::collect_field_samples(matches, use, samples_);
+  if (s.field.balance_cell_px > 0.0)
+    detail::balance_by_cell(samples_, s.field.balance_cell_px, cell_counts_, cell_of_);
+  result_.field_ =
+      detail::dominant_field(samples_, center, window, s.residuals.center_iterations, scratch_);
+}
+
+template <class Scalar>
+Scalar ReprojectionScreen<Scalar>::field_support(const Matches<Scalar>& matches,
+                                                 const ResidualField<Scalar>& field,
+                                                 double window) const {
+  // samples_ holds the fit set in match order with its balanced weights w = b / sigma^2.
+  const auto w2 = static_cast<Scalar>(window * window);
+  Scalar support = 0;
+  std::size_t k = 0;
+  for (Index i = 0; i < matches.size(); ++i) {
+    if (!in_fit(matches, i)) continue;
+    const Eigen::Matrix<Scalar, 2, 1> d = matches.residual(i) - field.at(matches.predicted(i));
+    const Scalar s2 = matches.sigma(i) * matches.sigma(i);
+    if (d.squaredNorm() <= w2 * s2) support += samples_.w[k] * s2;
+    ++k;
+  }
+  return support;
+}
+
+template <class Scalar>
+void ReprojectionScreen<Scalar>::centred_magnitudes(const Matches<Scalar>& matches,
+                                                    const HbosScreen& s) {
+  ScreenResult<Scalar>& r = result_;
+  const Index n = matches.size();
+  const auto clip = static_cast<Scalar>(s.magnitude_clip);
+  dx_.resize(static_cast<std::size_t>(n));
+  dy_.resize(static_cast<std::size_t>(n));
+  for (Index i = 0; i < n; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    const Eigen::Matrix<Scalar, 2, 1> c = r.field_.at(matches.predicted(i));
+    Eigen::Matrix<Scalar, 2, 1> d = matches.residual(i) - c;
+    // A stereo component shifts with the pose error like u does: center it by c_x.
+    const Scalar right = matches.has_right(i) ? matches.right_residual(i) - c.x() : Scalar(0);
+    Scalar m = std::sqrt(d.squaredNorm() + right * right);
+    if (s.residuals.whiten) {
+      m /= matches.sigma(i);
+      d /= matches.sigma(i);
+    }
+    if (clip > Scalar(0)) m = std::min(m, clip);
+    r.magnitude_[k] = m;
+    dx_[k] = d.x();
+    dy_[k] = d.y();
+  }
+}
+
+template <class Scalar>
 void ReprojectionScreen<Scalar>::run_hbos(const Matches<Scalar>& matches, const HbosScreen& s) {
+  if (s.gate.enabled) {
+    run_gated(matches, s);
+    return;
+  }
   const Index n_features = s.angle == AngleFeature::None ? 1 : 2;
   prepare(matches, n_features);
   ScreenResult<Scalar>& r = result_;
@@ -259,34 +364,42 @@ void ReprojectionScreen<Scalar>::run_hbos(const Matches<Scalar>& matches, const 
   const auto un = static_cast<std::size_t>(n);
   r.feature_names_[0] = "magnitude";
   r.feature_names_[1] = "angle";
+  r.unit_ = "score";
+  r.magnitude_unit_ = s.residuals.whiten ? "px/sigma" : "px";
 
   // 1-2. Center, magnitude (clipped), angle.
-  if (s.residuals.center != ResidualCenter::None) {
-    detail::collect_field_samples(
-        matches, [&](Index i) { return in_fit(matches, i); }, samples_);
-    r.field_ = detail::dominant_field(samples_, s.residuals.center, s.residuals.center_window,
-                                      s.residuals.center_iterations, scratch_);
-  }
-  const auto clip = static_cast<Scalar>(s.magnitude_clip);
+  fit_field(
+      matches, s, [&](Index i) { return in_fit(matches, i); }, s.residuals.center_window,
+      s.residuals.center);
+  centred_magnitudes(matches, s);
   angle_.resize(un);
-  for (Index i = 0; i < n; ++i) {
-    const Eigen::Matrix<Scalar, 2, 1> c = r.field_.at(matches.predicted(i));
-    const Eigen::Matrix<Scalar, 2, 1> d = matches.residual(i) - c;
-    // A stereo component shifts with the pose error like u does: center it by c_x.
-    const Scalar right = matches.has_right(i) ? matches.right_residual(i) - c.x() : Scalar(0);
-    Scalar m = std::sqrt(d.squaredNorm() + right * right);
-    if (s.residuals.whiten) m /= matches.sigma(i);
-    if (clip > Scalar(0)) m = std::min(m, clip);
-    r.magnitude_[static_cast<std::size_t>(i)] = m;
-    if (s.angle != AngleFeature::None)
-      angle_[static_cast<std::size_t>(i)] = std::atan2(d.y(), d.x());
-  }
+  if (s.angle != AngleFeature::None)
+    for (std::size_t k = 0; k < un; ++k) angle_[k] = std::atan2(dy_[k], dx_[k]);
 
-  // 3. Histograms fitted on the fit set; contributions for every match.
-  magnitude_hist_.refit(fit_column(matches, r.magnitude_), s.magnitude, s.scoring, scratch_, 0);
+  // 3. Histograms fitted on the fit set; contributions for every match. A clipped magnitude is
+  // beyond any bin that means something: it is not fitted (a crowd of gross mismatches at the
+  // clip would otherwise become the modal bin and score 0) and it scores the cap.
+  const auto clip = static_cast<Scalar>(s.magnitude_clip);
+  const auto clipped = [&](Index i) {
+    return clip > Scalar(0) && r.magnitude_[static_cast<std::size_t>(i)] >= clip;
+  };
+  const Column unclipped =
+      select(matches, r.magnitude_, [&](Index i) { return in_fit(matches, i) && !clipped(i); });
   Scalar* c_mag = r.contribution_.data();
-  for (Index i = 0; i < n; ++i)
-    c_mag[i] = magnitude_hist_.contribution(r.magnitude_[static_cast<std::size_t>(i)]);
+  if (unclipped.size() == 0) {
+    // Every fitted match is a gross mismatch: nothing is trusted.
+    std::fill(r.score_.begin(), r.score_.end(), Scalar(1));
+    std::fill(r.contribution_.begin(), r.contribution_.end(), Scalar(0));
+    std::fill(c_mag, c_mag + n, Scalar(1));
+    r.threshold_ = Scalar(0);
+    finish(matches, Scalar(0));
+    return;
+  }
+  magnitude_hist_.refit(unclipped, s.magnitude, s.scoring, scratch_, 0);
+  for (Index i = 0; i < n; ++i) {
+    c_mag[i] = clipped(i) ? magnitude_hist_.cap()
+                          : magnitude_hist_.contribution(r.magnitude_[static_cast<std::size_t>(i)]);
+  }
   if (s.angle != AngleFeature::None) {
     Scalar* c_ang = r.contribution_.data() + n;
     // AboveNoise: only residuals clearly above the noise have a meaningful direction; they alone
@@ -301,11 +414,8 @@ void ReprojectionScreen<Scalar>::run_hbos(const Matches<Scalar>& matches, const 
       if (used && in_fit(matches, i))
         fit_values_[static_cast<std::size_t>(m++)] = angle_[static_cast<std::size_t>(i)];
     }
-    if (m > 0) {
-      angle_hist_.refit(
-          Eigen::Map<const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>>(fit_values_.data(), m),
-          s.angle_spec, s.scoring, scratch_, 1);
-    }
+    if (m > 0)
+      angle_hist_.refit(Column(fit_values_.data(), m), s.angle_spec, s.scoring, scratch_, 1);
     for (Index i = 0; i < n; ++i) {
       c_ang[i] = (m > 0 && angle_used_[static_cast<std::size_t>(i)])
                      ? angle_hist_.contribution(angle_[static_cast<std::size_t>(i)])
@@ -327,6 +437,189 @@ void ReprojectionScreen<Scalar>::run_hbos(const Matches<Scalar>& matches, const 
 }
 
 template <class Scalar>
+void ReprojectionScreen<Scalar>::gate_and_evidence(const Matches<Scalar>& matches,
+                                                   const HbosScreen& s) {
+  ScreenResult<Scalar>& r = result_;
+  const Index n = matches.size();
+  const auto un = static_cast<std::size_t>(n);
+  // 3. The noise scale over the fit set and the gate.
+  const Column fit = fit_column(matches, r.magnitude_);
+  scratch_.assign(fit.data(), fit.data() + fit.size());
+  scale_ = detail::rayleigh_scale(scratch_, scratch_.size(), s.gate.scale_quantile);
+  // A frame whose residuals are all exactly zero has no noise to measure: the floor decides.
+  const auto floor = static_cast<Scalar>(s.gate.floor);
+  gate_ = std::max(floor, static_cast<Scalar>(s.gate.scales) * scale_);
+  const Scalar s_eff = std::max(scale_, floor * Scalar(1e-3));
+
+  // 4. Evidence.
+  coherence_.assign(un, Scalar(0));
+  if (s.coherence.enabled) {
+    detail::CoherenceWork<Scalar>& w = coherence_work_;
+    w.dx = dx_;
+    w.dy = dy_;
+    w.support.resize(un);
+    for (Index i = 0; i < n; ++i)
+      w.support[static_cast<std::size_t>(i)] =
+          in_fit(matches, i) && r.magnitude_[static_cast<std::size_t>(i)] <= gate_ ? 1 : 0;
+    scratch_.resize(un);
+    depth_.resize(un);
+    fit_values_.resize(un);
+    for (Index i = 0; i < n; ++i) {
+      const auto k = static_cast<std::size_t>(i);
+      const Eigen::Matrix<Scalar, 2, 1> p = matches.predicted(i);
+      scratch_[k] = p.x();
+      fit_values_[k] = p.y();
+      depth_[k] = matches.depth(i);
+    }
+    detail::coherence_evidence(scratch_.data(), fit_values_.data(), depth_.data(), un, gate_, s_eff,
+                               s.coherence.cell_px, s.coherence.depth_ratio, s.coherence.z0, w,
+                               coherence_.data());
+    // Bounded like the magnitude: it bounds the evidence histogram's bins.
+    for (Scalar& l : coherence_) l = std::min(l, Scalar(64));
+  }
+  proximity_.assign(un, Scalar(0));
+  history_.assign(un, Scalar(0));
+  fired_.assign(un, 0);
+  looks_static_.assign(un, 0);
+  const auto mask_radius = static_cast<Scalar>(s.mask.radius_px);
+  const Scalar mask_floor = static_cast<Scalar>(s.mask.min_scales) * s_eff;
+  for (Index i = 0; i < n; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    std::uint8_t fired = 0;
+    if (s.coherence.enabled && coherence_[k] > static_cast<Scalar>(s.coherence.floor)) fired |= 1;
+    const Scalar d = matches.mask_distance(i);
+    if (s.mask.enabled && !std::isnan(d)) {
+      proximity_[k] = std::max(Scalar(0), Scalar(1) - d / mask_radius);
+      if (proximity_[k] > Scalar(0) && r.magnitude_[k] > mask_floor) fired |= 2;
+    }
+    const Scalar h = matches.outlier_history(i);
+    if (s.history.enabled && !std::isnan(h)) {
+      history_[k] = h;
+      if (h > static_cast<Scalar>(s.history.floor)) fired |= 4;
+    }
+    fired_[k] = fired;
+    looks_static_[k] = in_fit(matches, i) && r.magnitude_[k] <= gate_ && fired == 0 ? 1 : 0;
+  }
+}
+
+template <class Scalar>
+void ReprojectionScreen<Scalar>::run_gated(const Matches<Scalar>& matches, const HbosScreen& s) {
+  constexpr Index kFeatures = 4;  // magnitude, coherence, mask, history
+  prepare(matches, kFeatures);
+  ScreenResult<Scalar>& r = result_;
+  const Index n = matches.size();
+  const auto un = static_cast<std::size_t>(n);
+  r.feature_names_[0] = "magnitude";
+  r.feature_names_[1] = "coherence";
+  r.feature_names_[2] = "mask";
+  r.feature_names_[3] = "history";
+  r.unit_ = "score";
+  r.magnitude_unit_ = "px/sigma";
+
+  // 1-5. Field, magnitudes, gate, evidence; then once more with the field fitted on the matches
+  // that look static.
+  // The first passes fit a constant field: an affine one can tilt into a ramp that absorbs a
+  // compact object on one side of the image (its gradient then hides the object's motion). The
+  // configured field is fitted last, on the matches that look static.
+  const auto fit_set = [&](Index i) { return in_fit(matches, i); };
+  const ResidualCenter first_center =
+      s.residuals.center == ResidualCenter::None ? ResidualCenter::None : ResidualCenter::Constant;
+  fit_field(matches, s, fit_set, s.residuals.center_window, first_center);
+  centred_magnitudes(matches, s);
+  gate_and_evidence(matches, s);
+  if (s.residuals.center != ResidualCenter::None) {
+    // The wide first window lets a person a few noise levels off the background join the fit;
+    // refit with a window of the noise this frame has.
+    const double window =
+        std::max(std::min(s.residuals.center_window,
+                          s.field.refit_window_scales * static_cast<double>(scale_)),
+                 1e-3);
+    fit_field(matches, s, fit_set, window, first_center);
+    // A fitted field can still settle between the background and a large, slow object; the
+    // rough pose's own frame (no field) is the other candidate. Keep the one more matches of
+    // the fit set support within the window, each image cell counted as balanced.
+    if (field_support(matches, result_.field_, window) <
+        field_support(matches, ResidualField<Scalar>{}, window))
+      result_.field_ = ResidualField<Scalar>{};
+    centred_magnitudes(matches, s);
+    gate_and_evidence(matches, s);
+  }
+  if (s.field.refit_on_static && s.residuals.center != ResidualCenter::None) {
+    Index n_static = 0;
+    for (const std::uint8_t b : looks_static_) n_static += b;
+    if (n_static >= config_.min_fit_matches) {
+      // Whitened pixels, like center_window; never wider than it.
+      const double window = std::min(s.residuals.center_window,
+                                     s.field.refit_window_scales * static_cast<double>(scale_));
+      fit_field(
+          matches, s, [&](Index i) { return looks_static_[static_cast<std::size_t>(i)] != 0; },
+          std::max(window, 1e-3), s.residuals.center);
+      centred_magnitudes(matches, s);
+      gate_and_evidence(matches, s);
+    }
+  }
+
+  // 6. Histograms of the evidence on the matches that look static; the fired features' sum.
+  const auto t = static_cast<Scalar>(std::get<FixedThreshold>(s.threshold).value);
+  const auto on_static = [&](Index i) { return looks_static_[static_cast<std::size_t>(i)] != 0; };
+  const Column static_magnitudes = select(matches, r.magnitude_, on_static);
+  const bool have_static = static_magnitudes.size() >= 2;
+  std::fill(r.contribution_.begin(), r.contribution_.end(), Scalar(0));
+  const FeatureSpec evidence_spec = [] {
+    FeatureSpec spec;
+    spec.binning.method = BinningMethod::FixedWidth;
+    spec.binning.origin = 0.0;
+    spec.tail = Tail::Upper;
+    return spec;
+  }();
+  // A fired feature without a static population to compare with scores above any cut.
+  const Scalar no_reference = t + Scalar(1);
+  auto charge = [&](Index feature, const std::vector<Scalar>& values, std::uint8_t bit,
+                    double width) {
+    Scalar* out = r.contribution_.data() + feature * n;
+    bool any = false;
+    for (const std::uint8_t f : fired_) any = any || (f & bit) != 0;
+    if (!any) return;
+    if (!have_static) {
+      for (std::size_t k = 0; k < un; ++k)
+        if (fired_[k] & bit) out[k] = no_reference;
+      return;
+    }
+    FeatureSpec spec = evidence_spec;
+    spec.binning.width = width;
+    const Column reference = select(matches, values, on_static);
+    evidence_hist_.refit(reference, spec, s.scoring, scratch_, feature);
+    for (std::size_t k = 0; k < un; ++k)
+      if (fired_[k] & bit) out[k] = evidence_hist_.contribution(values[k]);
+  };
+  charge(1, coherence_, 1, 0.5);
+  charge(2, proximity_, 2, 0.1);
+  charge(3, history_, 4, 0.1);
+  if (have_static) {
+    magnitude_hist_.refit(static_magnitudes, s.magnitude, s.scoring, scratch_, 0);
+    for (std::size_t k = 0; k < un; ++k)
+      if (fired_[k]) r.contribution_[k] = magnitude_hist_.contribution(r.magnitude_[k]);
+  }
+
+  // 7. Decision statistic: max(t m / G, E); the cut t.
+  Index by_evidence = 0;
+  for (std::size_t k = 0; k < un; ++k) {
+    Scalar e = 0;
+    for (Index j = 0; j < kFeatures; ++j)
+      e += r.contribution_[static_cast<std::size_t>(j) * un + k];
+    const Scalar g = t * r.magnitude_[k] / gate_;
+    r.score_[k] = std::max(g, e);
+    if (g <= t && e > t) ++by_evidence;
+  }
+  r.threshold_ = t;
+  r.magnitude_cut_ = gate_;
+  r.noise_scale_ = scale_;
+  r.n_evidence_ = by_evidence;
+  r.coherence_.assign(coherence_.begin(), coherence_.end());
+  finish(matches, Scalar(0));
+}
+
+template <class Scalar>
 void ReprojectionScreen<Scalar>::run_gate(const Matches<Scalar>& matches) {
   prepare(matches, 1);
   ScreenResult<Scalar>& r = result_;
@@ -343,6 +636,8 @@ void ReprojectionScreen<Scalar>::run_gate(const Matches<Scalar>& matches) {
   if (const auto* g = std::get_if<MadGate>(&strategy)) stat.whiten = g->whiten;
   if (stat.whiten && !stat.squared) stat.name = "residual_whitened";
   r.feature_names_[0] = stat.name;
+  r.magnitude_unit_ = stat.whiten ? "px/sigma" : "px";
+  r.unit_ = stat.squared ? "px^2/sigma^2" : r.magnitude_unit_;
 
   const auto* chi = std::get_if<ChiSquareGate>(&strategy);
   for (Index i = 0; i < n; ++i) {
@@ -376,6 +671,7 @@ void ReprojectionScreen<Scalar>::run_gate(const Matches<Scalar>& matches) {
     r.threshold_ =
         compute_threshold(fit_column(matches, r.score_), MedianMad{mad.k, true}, scratch_);
   }
+  r.magnitude_cut_ = chi != nullptr ? std::sqrt(r.threshold_) : r.threshold_;
   finish(matches, Scalar(0));
 }
 

@@ -42,7 +42,10 @@
 /// Threading: these are plain parameter structs.
 
 #include <Eigen/Core>
+#include <array>
 #include <cmath>
+#include <string>
+#include <string_view>
 #include <variant>
 
 #include "hbos/binning.hpp"
@@ -60,8 +63,76 @@ enum class AngleFeature {
   AboveNoise,  ///< angle histogram built from, and charged to, residuals above `angle_gate` only
 };
 
+/// The noise gate of the HBOS screen: a cut on the centred, whitened magnitude m that follows
+/// the noise the frame actually has. With s the frame's robust noise scale (the `scale_quantile`
+/// quantile of m over the fit set, through the Rayleigh quantile function: 2-D Gaussian noise of
+/// scale s per axis gives |d| ~ Rayleigh(s)), the gate is G = max(floor, scales * s).
+struct NoiseGate {
+  bool enabled = true;
+  /// [px/sigma] the gate never closes below this. sqrt(5.991): ORB-SLAM2's 95 % chi^2 gate, so
+  /// a noise gate alone drops no more static matches than chi^2 does.
+  double floor = 2.447;
+  /// the gate opens to this many noise scales when the frame is noisier than the floor assumes
+  /// (a rough pose whose error the field does not absorb, blur, a heavier-tailed detector).
+  double scales = 5.0;
+  /// the quantile the scale is read from, in (0, 1): a low one stays on the static matches
+  /// when a dynamic object holds most of the large residuals.
+  double scale_quantile = 0.25;
+};
+
+/// Spatial coherence: a moving object's matches are neighbours (in the image and in depth) and
+/// share a residual that departs from the background's. Per match i, c_i is the mean whitened,
+/// centred residual of its neighbours (matches of the fit set in the 3 x 3 image cells around
+/// it and, when depths are set, within `depth_ratio` squared in depth), each clamped to the
+/// gate; c_i is shrunk towards 0 by its significance, c'_i = c_i max(0, 1 - z0 / z_i) with
+/// z_i = |c_i| sqrt(N_i) / s, and the evidence is the log-likelihood ratio of "moves with its
+/// neighbours" over "moves with the background" under the noise model:
+/// l_i = (2 d_i . c'_i - |c'_i|^2) / (2 s^2).
+struct CoherenceEvidence {
+  bool enabled = true;
+  double cell_px = 40.0;      ///< [px] side of a neighbourhood cell, > 0
+  double depth_ratio = 1.15;  ///< depth layers are this ratio thick, > 1
+  double z0 = 3.0;            ///< significance (in standard errors) below which c_i is noise
+  double floor = 2.0;         ///< evidence counts only above this log-likelihood ratio, >= 0
+};
+
+/// The mask's neighbourhood: a match within `radius_px` of a dynamic-object mask whose
+/// magnitude is above `min_scales` noise scales is likely an edge the mask missed.
+struct MaskEvidence {
+  bool enabled = true;
+  double radius_px = 10.0;  ///< [px] > 0
+  double min_scales = 3.0;  ///< > 0
+};
+
+/// Persistence: a track or map point the caller has seen screened out before (its outlier
+/// history, Matches::set_outlier_history) counts as evidence above `floor`.
+struct HistoryEvidence {
+  bool enabled = true;
+  double floor = 0.5;  ///< in [0, 1)
+};
+
+/// How the dominant residual field resists a dynamic object that holds many matches.
+struct FieldFit {
+  /// [px] each coarse image cell of this side weighs at most as much as the average occupied
+  /// cell: a person crowding a few cells cannot outvote the background spread over the image.
+  /// 0 = off.
+  double balance_cell_px = 80.0;
+  /// refit the field on the matches the evidence calls static (one extra pass)
+  bool refit_on_static = true;
+  /// the refit's window, in noise scales s: tight enough that a second population (a person a
+  /// few noise levels off the background) cannot join the fit and tilt it. > 0.
+  double refit_window_scales = 2.0;
+};
+
 /// The HBOS screen on reprojection residuals. Default-constructed = the recommended screen; see
-/// the file comment for the reasons and `paper()` for the literal method.
+/// the file comment for the reasons, `magnitude_only()` for the previous (single-feature)
+/// default and `paper()` for the literal method.
+///
+/// With the noise gate on, a match is rejected when its magnitude is beyond the gate, or when,
+/// inside it, evidence fires (coherence, mask neighbourhood, history above their floors) and
+/// its HBOS score on the fired features — histograms fitted on the matches that look static —
+/// is above the threshold. The reported score is max(t m / G, evidence score), so
+/// score > threshold is the decision in every case.
 struct HbosScreen {
   ResidualOptions residuals{};  ///< whitening and centering of the residuals
   /// Binning of the magnitude: fixed width [px/sigma, or px when not whitened], anchored at zero,
@@ -75,7 +146,8 @@ struct HbosScreen {
     return spec;
   }();
   /// [px/sigma or px] magnitudes are clipped here before binning: everything beyond is an outlier
-  /// anyway, and it bounds the bin count (and so the memory) whatever the input.
+  /// anyway, and it bounds the bin count (and so the memory) whatever the input. A clipped match
+  /// is never fitted and always scores the histogram's cap.
   double magnitude_clip = 64.0;
   AngleFeature angle = AngleFeature::None;     ///< angle evidence
   FeatureSpec angle_spec = angle_feature(16);  ///< binning of the angle [rad]
@@ -85,15 +157,32 @@ struct HbosScreen {
   /// exp(-t) of the modal bin's.
   ThresholdRule threshold = FixedThreshold{1.5};
   /// [px/sigma] noise floor: a match whose (centered, whitened) magnitude is at most this is never
-  /// rejected; 0 (the default) disables it. 2.447 = sqrt(5.991) would keep everything ORB-SLAM2's
-  /// chi^2 gate keeps around the dominant residual (measured: it lets ~2x more dynamics through).
+  /// rejected; 0 (the default) disables it. Only used with the noise gate off.
   double keep_below = 0.0;
+  NoiseGate gate{};               ///< the noise-calibrated cut (off: the magnitude HBOS decides)
+  CoherenceEvidence coherence{};  ///< needs the gate
+  MaskEvidence mask{};            ///< needs the gate and mask distances in the matches
+  HistoryEvidence history{};      ///< needs the gate and outlier histories in the matches
+  FieldFit field{};               ///< robust fitting of the dominant residual field
+
+  /// The previous default: the centred, whitened magnitude alone, fixed-width HBOS bins and a
+  /// fixed score cut, no gate, no further evidence. For comparison (docs/screening.md).
+  [[nodiscard]] static HbosScreen magnitude_only() {
+    HbosScreen s;
+    s.gate.enabled = false;
+    s.coherence.enabled = false;
+    s.mask.enabled = false;
+    s.history.enabled = false;
+    s.field.balance_cell_px = 0.0;
+    s.field.refit_on_static = false;
+    return s;
+  }
 
   /// The paper's screen taken literally: raw pixel magnitude and raw angle, independent
   /// histograms of 10 equal-width bins over [min, max], two-sided, no centering, threshold
   /// eq. 6 `0.7 (max - min) + min`. For reproduction and comparison only (see docs/screening.md).
   [[nodiscard]] static HbosScreen paper() {
-    HbosScreen s;
+    HbosScreen s = magnitude_only();
     s.residuals.whiten = false;
     s.residuals.center = ResidualCenter::None;
     s.magnitude = FeatureSpec{};
@@ -173,6 +262,40 @@ inline void validate(const HbosScreen& s) {
           "HbosScreen keep_below must be finite and >= 0, got ", s.keep_below);
   validate(s.scoring);
   std::visit([](const auto& r) { validate(r); }, s.threshold);
+  const NoiseGate& g = s.gate;
+  require(std::isfinite(g.floor) && g.floor > 0.0, "NoiseGate floor must be finite and > 0, got ",
+          g.floor);
+  require(std::isfinite(g.scales) && g.scales > 0.0,
+          "NoiseGate scales must be finite and > 0, got ", g.scales);
+  require(g.scale_quantile > 0.0 && g.scale_quantile < 1.0,
+          "NoiseGate scale_quantile must lie in (0, 1), got ", g.scale_quantile);
+  const CoherenceEvidence& c = s.coherence;
+  require(std::isfinite(c.cell_px) && c.cell_px >= 1.0,
+          "CoherenceEvidence cell_px must be finite and >= 1, got ", c.cell_px);
+  require(std::isfinite(c.depth_ratio) && c.depth_ratio > 1.0 && c.depth_ratio <= 100.0,
+          "CoherenceEvidence depth_ratio must lie in (1, 100], got ", c.depth_ratio);
+  require(std::isfinite(c.z0) && c.z0 >= 0.0, "CoherenceEvidence z0 must be finite and >= 0, got ",
+          c.z0);
+  require(std::isfinite(c.floor) && c.floor >= 0.0,
+          "CoherenceEvidence floor must be finite and >= 0, got ", c.floor);
+  require(std::isfinite(s.mask.radius_px) && s.mask.radius_px > 0.0,
+          "MaskEvidence radius_px must be finite and > 0, got ", s.mask.radius_px);
+  require(std::isfinite(s.mask.min_scales) && s.mask.min_scales > 0.0,
+          "MaskEvidence min_scales must be finite and > 0, got ", s.mask.min_scales);
+  require(s.history.floor >= 0.0 && s.history.floor < 1.0,
+          "HistoryEvidence floor must lie in [0, 1), got ", s.history.floor);
+  require(std::isfinite(s.field.balance_cell_px) &&
+              (s.field.balance_cell_px == 0.0 || s.field.balance_cell_px >= 1.0),
+          "FieldFit balance_cell_px must be 0 (off) or finite and >= 1, got ",
+          s.field.balance_cell_px);
+  require(std::isfinite(s.field.refit_window_scales) && s.field.refit_window_scales > 0.0,
+          "FieldFit refit_window_scales must be finite and > 0, got ", s.field.refit_window_scales);
+  require(!s.gate.enabled || std::holds_alternative<FixedThreshold>(s.threshold),
+          "HbosScreen's noise gate needs a FixedThreshold score cut");
+  require(!s.gate.enabled || s.angle == AngleFeature::None,
+          "HbosScreen's noise gate does not combine with an angle feature");
+  require(!s.gate.enabled || s.residuals.whiten,
+          "HbosScreen's noise gate works on whitened magnitudes: residuals.whiten must be true");
 }
 inline void validate(const FixedPixelGate& g) {
   require(g.max_px > 0.0 && std::isfinite(g.max_px),
@@ -199,7 +322,7 @@ inline void validate(const ScreenConfig& c) {
 
 }  // namespace detail
 
-/// Short name of a strategy, for tables and logs.
+/// Short name of a strategy's family, for tables and logs.
 [[nodiscard]] inline const char* strategy_name(const ScreenStrategy& s) {
   struct Namer {
     const char* operator()(const HbosScreen&) const { return "hbos"; }
@@ -209,6 +332,43 @@ inline void validate(const ScreenConfig& c) {
     const char* operator()(const MadGate&) const { return "mad"; }
   };
   return std::visit(Namer{}, s);
+}
+
+/// One entry of the table of named strategies.
+struct NamedStrategy {
+  const char* name;         ///< what a command line or config file says
+  const char* description;  ///< one line for --help and docs
+  ScreenStrategy (*make)();
+};
+
+/// The one table of named strategies: every command, study and benchmark parses through it.
+[[nodiscard]] inline const std::array<NamedStrategy, 7>& named_strategies() {
+  static const std::array<NamedStrategy, 7> table = {{
+      {"default", "HBOS screen: noise-calibrated gate + coherence, mask and history evidence",
+       [] { return ScreenStrategy{HbosScreen{}}; }},
+      {"paper", "the HBOS-SLAM paper taken literally (magnitude + angle, eq. 6)",
+       [] { return ScreenStrategy{HbosScreen::paper()}; }},
+      {"magnitude", "HBOS on the centred whitened magnitude alone (the previous default)",
+       [] { return ScreenStrategy{HbosScreen::magnitude_only()}; }},
+      {"chi2", "ORB-SLAM2's chi^2 gate (5.991, sigma = 1.2^octave)",
+       [] { return ScreenStrategy{ChiSquareGate{}}; }},
+      {"fixed", "a fixed 3 px gate", [] { return ScreenStrategy{FixedPixelGate{}}; }},
+      {"quantile", "CFP-SLAM's 0.8 quantile of |r|", [] { return ScreenStrategy{QuantileGate{}}; }},
+      {"mad", "median + 3 x 1.4826 MAD of |r|/sigma", [] { return ScreenStrategy{MadGate{}}; }},
+  }};
+  return table;
+}
+
+/// The strategy called `name` in named_strategies().
+/// \throws InvalidArgument naming the value and the choices.
+[[nodiscard]] inline ScreenStrategy parse_screen_strategy(std::string_view name) {
+  std::string choices;
+  for (const NamedStrategy& s : named_strategies()) {
+    if (name == s.name) return s.make();
+    choices += choices.empty() ? "" : ", ";
+    choices += s.name;
+  }
+  throw InvalidArgument(detail::concat("screen strategy '", name, "' is not one of ", choices));
 }
 
 }  // namespace hbos

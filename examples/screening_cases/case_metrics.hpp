@@ -1,0 +1,66 @@
+#pragma once
+/// \file
+/// What hbos-screening-eval measures on a labelled case: per strategy the share of static
+/// matches dropped, dynamic matches kept and gross mismatches kept (single round per pair, pooled
+/// over the case's pairs); per case how often the rough pose absorbed the person and the static
+/// noise tail; and the acceptance rule of issue 7 item 7.
+
+#include "eval_strategies.hpp"
+#include "screening_cases.hpp"
+
+#include <string>
+#include <vector>
+
+namespace hbos::cases {
+
+/// Counts of one strategy on one case. Static = neither dynamic nor gross.
+struct Tally {
+  long long statics = 0, static_dropped = 0;
+  long long dynamics = 0, dynamic_kept = 0;
+  long long gross = 0, gross_kept = 0;
+
+  [[nodiscard]] double static_dropped_pct() const;  ///< NaN when there is no static match
+  [[nodiscard]] double dynamic_kept_pct() const;    ///< NaN when there is no dynamic match
+  [[nodiscard]] double gross_kept_pct() const;      ///< NaN when there is no gross mismatch
+};
+
+/// chi2's 95 % gate on a 2-dof whitened residual [px/sigma]: sqrt(5.991).
+inline constexpr double kChi2GatePx = 2.447;
+/// Pairs with fewer dynamic matches do not count towards the absorbed share.
+inline constexpr int kMinDynamicForAbsorbed = 10;
+
+struct CaseMetrics {
+  std::string name;              ///< the case (scene + rough pose)
+  std::string scene;             ///< its folder
+  std::string rough_pose;        ///< ransac | pgt | reference
+  bool static_sequence = false;  ///< no person composited (the manifest's static scenes)
+  int pairs = 0;
+  long long matches = 0;
+  std::vector<Tally> tallies;  ///< one per eval_strategies() entry, in that order
+  /// Pairs with >= kMinDynamicForAbsorbed dynamic matches, and those among them whose median
+  /// whitened dynamic residual under the rough pose is below kChi2GatePx (the pose absorbed it).
+  int pairs_with_person = 0, pairs_absorbed = 0;
+  /// Whitened |r| / sigma of the static matches under the rough pose [px/sigma].
+  std::vector<double> static_whitened;
+};
+
+/// Screens every pair of `c` with every strategy (single round) and counts.
+[[nodiscard]] CaseMetrics measure_case(const hbos_test::ScreeningCase& c,
+                                       const std::vector<NamedScreen>& strategies);
+
+/// The acceptance rule of one case (issue 7 item 7).
+struct Verdict {
+  bool pass = false;
+  std::string reason;  ///< the failing comparisons with numbers, or what was checked
+};
+
+/// Static sequence: default's static loss <= chi2's + 0.5 points. Otherwise: default keeps fewer
+/// dynamic matches than chi2 and than quantile, and drops no more statics than chi2 (cases
+/// without dynamic matches, e.g. an exact mask: the static part only). Needs strategies named
+/// default, chi2 and quantile.
+[[nodiscard]] Verdict acceptance(const CaseMetrics& m, const std::vector<NamedScreen>& strategies);
+
+/// The q-quantile (0..1) of `values` (sorted copy, linear interpolation); NaN when empty.
+[[nodiscard]] double quantile_of(std::vector<double> values, double q);
+
+}  // namespace hbos::cases

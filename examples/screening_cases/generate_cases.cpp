@@ -1,0 +1,142 @@
+// hbos-screening-cases: builds the labelled real residual cases (docs/screening_cases.md) from
+// the bundled TUM fr1/xyz frames and the people of the fr3/walking_xyz frame in ../shared.
+#include "case_builder.hpp"
+#include "case_writer.hpp"
+#include "common/atomic_file.hpp"
+#include "person_cutouts.hpp"
+
+#include <fmt/format.h>
+#include <CLI/CLI.hpp>
+#include <hbos/error.hpp>
+#include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
+
+#include <filesystem>
+#include <iostream>
+
+namespace {
+
+namespace fs = std::filesystem;
+using hbos::cases::CaseSpec;
+
+int run(int argc, char** argv) {
+  CLI::App app{"Builds labelled reprojection-residual cases from real TUM frames.",
+               "hbos-screening-cases"};
+  std::string fr1 = (fs::path(HBOS_SLAM_DATA_DIR) / "fr1_xyz_37").string();
+  std::string fr3, out, grid = "fixture", only;
+  app.add_option("--fr1", fr1, "TUM folder of the static sequence (with groundtruth.txt)")
+      ->capture_default_str();
+  app.add_option("--fr3", fr3, "../shared/data/tum_fr3_dynaslam_yubaoliu (the people)")->required();
+  app.add_option("--grid", grid, "which grid: fixture | holdout")
+      ->check(CLI::IsMember({"fixture", "holdout"}))
+      ->capture_default_str();
+  app.add_option("--out", out, "output folder (case folders and cases.json)")->required();
+  app.add_option("--only", only, "build only the scene of this name (for inspection)");
+  std::string preview;
+  int preview_frame = 0;
+  app.add_option("--preview", preview, "with --only: write frame --preview-frame as an image");
+  app.add_option("--preview-frame", preview_frame, "frame index of --preview")
+      ->capture_default_str();
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : 2;
+  }
+
+  hbos::cases::CaseInputs inputs;
+  inputs.sequence = hbos::slam::load_tum_sequence(fr1);
+  inputs.camera = hbos::slam::camera_preset("tum1");
+  inputs.people = hbos::cases::cut_people(fr3);
+  const std::vector<CaseSpec> specs =
+      grid == "fixture" ? hbos::cases::fixture_grid() : hbos::cases::holdout_grid();
+  bool found = only.empty();
+  for (const CaseSpec& s : specs) found = found || s.name == only;
+  if (!found) throw hbos::InvalidArgument(fmt::format("no case '{}' in the {} grid", only, grid));
+
+  if (!preview.empty()) {
+    if (only.empty()) throw hbos::InvalidArgument("--preview needs --only SCENE");
+    for (const CaseSpec& s : specs)
+      if (s.name == only &&
+          !cv::imwrite(preview, hbos::cases::preview_frame(s, inputs, preview_frame)))
+        throw hbos::InvalidArgument(fmt::format("cannot write preview '{}'", preview));
+    return 0;
+  }
+  fs::create_directories(out);
+  nlohmann::ordered_json manifest;
+  manifest["format"] = 1;
+  manifest["grid"] = grid;
+  manifest["sequence"] = fs::path(fr1).filename().string();
+  manifest["frames"] = inputs.sequence.size();
+  manifest["gross_sigmas"] = hbos::cases::kGrossSigmas;
+  manifest["on_mask_px"] = hbos::cases::kOnMaskPx;
+  nlohmann::ordered_json people = nlohmann::ordered_json::array();
+  for (const auto& p : inputs.people) {
+    people.push_back({{"person", std::string(1, p.id)},
+                      {"box_px", {p.box.x, p.box.y, p.box.width, p.box.height}},
+                      {"pixels", p.pixels},
+                      {"source_median_depth_m", p.median_depth_m}});
+  }
+  manifest["source_people"] = people;
+  manifest["columns"] = hbos::cases::pair_csv_header();
+  nlohmann::ordered_json scenes = nlohmann::ordered_json::array();
+  nlohmann::ordered_json cases = nlohmann::ordered_json::array();
+  for (const CaseSpec& spec : specs) {
+    if (!only.empty() && spec.name != only) continue;
+    const auto pairs = hbos::cases::build_case(spec, inputs);
+    scenes.push_back(hbos::cases::write_case((fs::path(out) / spec.name).string(), spec, pairs));
+    // Each scene is two cases: the same matches under the RANSAC and the perturbed-GT pose.
+    for (const auto kind :
+         {hbos::cases::RoughPoseKind::kRansac, hbos::cases::RoughPoseKind::kPerturbed}) {
+      nlohmann::ordered_json who = nlohmann::ordered_json::array();
+      for (const auto& p : spec.people) who.push_back(std::string(1, p.person));
+      cases.push_back({{"name", spec.name + "_" + hbos::cases::to_string(kind)},
+                       {"dir", spec.name},
+                       {"people", who},
+                       {"speed", spec.speed},
+                       {"mask", hbos::cases::to_string(spec.mask)},
+                       {"rough_pose", hbos::cases::to_string(kind)},
+                       {"seed", kind == hbos::cases::RoughPoseKind::kPerturbed ? spec.seed : 0},
+                       {"pairs", pairs.size()}});
+    }
+    std::size_t matches = 0, dynamic = 0, gross = 0;
+    double max_share = 0.0;
+    for (const auto& p : pairs) {
+      std::size_t d = 0;
+      for (const auto& r : p.rows) {
+        d += r.dynamic ? 1 : 0;
+        gross += r.gross ? 1 : 0;
+      }
+      matches += p.rows.size();
+      dynamic += d;
+      if (!p.rows.empty())
+        max_share =
+            std::max(max_share, static_cast<double>(d) / static_cast<double>(p.rows.size()));
+    }
+    std::cerr << fmt::format(
+        "{:28} {:2} pairs, {:5.0f} matches/pair, dynamic {:5.1f} % (max "
+        "{:4.1f} %), gross {:4.2f} %\n",
+        spec.name, pairs.size(), static_cast<double>(matches) / static_cast<double>(pairs.size()),
+        100.0 * static_cast<double>(dynamic) / static_cast<double>(matches), 100.0 * max_share,
+        100.0 * static_cast<double>(gross) / static_cast<double>(matches));
+  }
+  manifest["cases"] = cases;
+  manifest["scenes"] = scenes;
+  if (only.empty()) {
+    hbos::examples::write_file_atomically(fs::path(out) / "cases.json", manifest.dump(1) + "\n");
+  }
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const hbos::InvalidArgument& e) {
+    std::cerr << "hbos-screening-cases: " << e.what() << "\n";
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "hbos-screening-cases: " << e.what() << "\n";
+    return 1;
+  }
+}

@@ -1,0 +1,195 @@
+// hbos-screening-eval CASES_DIR: every screen strategy (eval_strategies.hpp), single round, on
+// every case of a labelled case folder (cases.json), as Markdown and JSON, with the acceptance
+// rule of issue 7 item 7 per case. See docs/screening_cases.md.
+#include "case_metrics.hpp"
+#include "common/atomic_file.hpp"
+
+#include <fmt/format.h>
+#include <CLI/CLI.hpp>
+#include <hbos/error.hpp>
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+
+namespace {
+
+namespace fs = std::filesystem;
+using hbos::cases::CaseMetrics;
+using hbos::cases::NamedScreen;
+
+std::string cell(double x) { return std::isnan(x) ? "-" : fmt::format("{:.1f}", x); }
+
+nlohmann::ordered_json number(double x) {
+  return std::isnan(x) ? nlohmann::ordered_json(nullptr)
+                       : nlohmann::ordered_json(std::round(x * 1000.0) / 1000.0);
+}
+
+nlohmann::ordered_json read_manifest(const std::string& dir) {
+  const std::string path = (fs::path(dir) / "cases.json").string();
+  std::ifstream in(path);
+  if (!in) throw hbos::InvalidArgument(fmt::format("cannot open manifest '{}'", path));
+  nlohmann::ordered_json m;
+  try {
+    in >> m;
+  } catch (const nlohmann::json::exception& e) {
+    throw hbos::InvalidArgument(fmt::format("manifest '{}' is not valid JSON: {}", path, e.what()));
+  }
+  if (!m.contains("cases") || !m["cases"].is_array() || m["cases"].empty()) {
+    throw hbos::InvalidArgument(fmt::format("manifest '{}' lists no cases", path));
+  }
+  for (const auto& c : m["cases"]) {
+    for (const char* key : {"name", "dir", "rough_pose", "people", "mask"}) {
+      if (!c.contains(key)) {
+        throw hbos::InvalidArgument(
+            fmt::format("manifest '{}': a case has no field '{}'", path, key));
+      }
+    }
+  }
+  return m;
+}
+
+std::string markdown(const std::vector<CaseMetrics>& all, const nlohmann::ordered_json& cases,
+                     const std::vector<NamedScreen>& strategies) {
+  std::string md = "#### Screens on the labelled real residual cases (single round)\n\n";
+  md +=
+      "Cells: static matches dropped % / dynamic matches kept % / gross mismatches kept %, pooled "
+      "over the case's pairs ('-': none of that kind).\n\n| case | mask | pose | pairs | matches |";
+  for (const NamedScreen& s : strategies) md += " " + s.name + " |";
+  md += "\n|---|---|---|---|---|";
+  for (std::size_t k = 0; k < strategies.size(); ++k) md += "---|";
+  md += "\n";
+  for (std::size_t c = 0; c < all.size(); ++c) {
+    const CaseMetrics& m = all[c];
+    md += fmt::format("| {} | {} | {} | {} | {} |", m.name, cases[c]["mask"].get<std::string>(),
+                      m.rough_pose, m.pairs, m.matches);
+    for (const auto& t : m.tallies) {
+      md += fmt::format(" {} / {} / {} |", cell(t.static_dropped_pct()), cell(t.dynamic_kept_pct()),
+                        cell(t.gross_kept_pct()));
+    }
+    md += "\n";
+  }
+  md +=
+      "\n#### Acceptance (issue 7 item 7) per case\n\n"
+      "Static sequence: default's static loss within chi2's + 0.5 points. Otherwise: default "
+      "keeps fewer dynamics than chi2 and than the 0.8 quantile at no more static loss than "
+      "chi2.\n\n| case | result | why |\n|---|---|---|\n";
+  int passed = 0;
+  for (const CaseMetrics& m : all) {
+    const auto v = hbos::cases::acceptance(m, strategies);
+    passed += v.pass ? 1 : 0;
+    md += fmt::format("| {} | {} | {} |\n", m.name, v.pass ? "pass" : "FAIL", v.reason);
+  }
+  md += fmt::format("\n{} of {} cases pass.\n", passed, all.size());
+  md +=
+      "\n#### The rough pose and the noise\n\n"
+      "Absorbed: pairs with >= 10 dynamic matches whose median whitened person residual under "
+      "the rough pose is below 2.447 px/sigma (chi2's gate). Static tail: quantiles of |r| / "
+      "sigma of the static matches (not gross) under the rough pose [px/sigma].\n\n"
+      "| case | pairs with person | absorbed | static q50 | q90 | q95 | q99 |\n"
+      "|---|---|---|---|---|---|---|\n";
+  std::vector<double> ransac_static;
+  for (const CaseMetrics& m : all) {
+    md += fmt::format("| {} | {} | {} | {:.2f} | {:.2f} | {:.2f} | {:.2f} |\n", m.name,
+                      m.pairs_with_person, m.pairs_absorbed,
+                      hbos::cases::quantile_of(m.static_whitened, 0.5),
+                      hbos::cases::quantile_of(m.static_whitened, 0.9),
+                      hbos::cases::quantile_of(m.static_whitened, 0.95),
+                      hbos::cases::quantile_of(m.static_whitened, 0.99));
+    if (m.rough_pose == "ransac")
+      ransac_static.insert(ransac_static.end(), m.static_whitened.begin(), m.static_whitened.end());
+  }
+  if (!ransac_static.empty()) {
+    md += fmt::format("| all RANSAC cases | | | {:.2f} | {:.2f} | {:.2f} | {:.2f} |\n",
+                      hbos::cases::quantile_of(ransac_static, 0.5),
+                      hbos::cases::quantile_of(ransac_static, 0.9),
+                      hbos::cases::quantile_of(ransac_static, 0.95),
+                      hbos::cases::quantile_of(ransac_static, 0.99));
+  }
+  return md;
+}
+
+nlohmann::ordered_json to_json(const std::vector<CaseMetrics>& all,
+                               const std::vector<NamedScreen>& strategies) {
+  nlohmann::ordered_json out;
+  out["strategies"] = nlohmann::ordered_json::array();
+  for (const NamedScreen& s : strategies) out["strategies"].push_back(s.name);
+  out["cases"] = nlohmann::ordered_json::array();
+  for (const CaseMetrics& m : all) {
+    nlohmann::ordered_json c;
+    c["name"] = m.name;
+    c["scene"] = m.scene;
+    c["rough_pose"] = m.rough_pose;
+    c["static_sequence"] = m.static_sequence;
+    c["pairs"] = m.pairs;
+    c["matches"] = m.matches;
+    for (std::size_t s = 0; s < strategies.size(); ++s) {
+      const auto& t = m.tallies[s];
+      c["strategies"][strategies[s].name] = {
+          {"statics", t.statics},   {"static_dropped_pct", number(t.static_dropped_pct())},
+          {"dynamics", t.dynamics}, {"dynamic_kept_pct", number(t.dynamic_kept_pct())},
+          {"gross", t.gross},       {"gross_kept_pct", number(t.gross_kept_pct())}};
+    }
+    const auto v = hbos::cases::acceptance(m, strategies);
+    c["acceptance"] = {{"pass", v.pass}, {"reason", v.reason}};
+    c["pairs_with_person"] = m.pairs_with_person;
+    c["pairs_absorbed"] = m.pairs_absorbed;
+    c["static_whitened_quantiles"] = {
+        {"q50", number(hbos::cases::quantile_of(m.static_whitened, 0.5))},
+        {"q90", number(hbos::cases::quantile_of(m.static_whitened, 0.9))},
+        {"q95", number(hbos::cases::quantile_of(m.static_whitened, 0.95))},
+        {"q99", number(hbos::cases::quantile_of(m.static_whitened, 0.99))}};
+    out["cases"].push_back(c);
+  }
+  return out;
+}
+
+int run(int argc, char** argv) {
+  CLI::App app{"Every screen strategy on labelled real residual cases.", "hbos-screening-eval"};
+  std::string dir, markdown_path = "-", json_path;
+  app.add_option("cases_dir", dir, "folder with cases.json (e.g. tests/data/screening_cases)")
+      ->required();
+  app.add_option("--markdown", markdown_path, "Markdown report ('-' = stdout)")
+      ->capture_default_str();
+  app.add_option("--json", json_path, "JSON report");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : 2;
+  }
+  const nlohmann::ordered_json manifest = read_manifest(dir);
+  const std::vector<NamedScreen> strategies = hbos::cases::eval_strategies();
+  std::vector<CaseMetrics> all;
+  for (const auto& c : manifest["cases"]) {
+    const auto pose = hbos_test::parse_case_pose(c["rough_pose"].get<std::string>());
+    const auto loaded = hbos_test::load_screening_case(
+        (fs::path(dir) / c["dir"].get<std::string>()).string(), pose);
+    CaseMetrics m = hbos::cases::measure_case(loaded, strategies);
+    m.name = c["name"].get<std::string>();
+    m.scene = c["dir"].get<std::string>();
+    m.rough_pose = c["rough_pose"].get<std::string>();
+    m.static_sequence = c["people"].empty();
+    all.push_back(std::move(m));
+  }
+  hbos::examples::write_file_atomically(markdown_path,
+                                        markdown(all, manifest["cases"], strategies));
+  if (!json_path.empty())
+    hbos::examples::write_file_atomically(json_path, to_json(all, strategies).dump(1) + "\n");
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const hbos::InvalidArgument& e) {
+    std::cerr << "hbos-screening-eval: " << e.what() << "\n";
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "hbos-screening-eval: " << e.what() << "\n";
+    return 1;
+  }
+}

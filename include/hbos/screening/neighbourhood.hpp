@@ -1,0 +1,150 @@
+#pragma once
+/// \file
+/// Spatial coherence of residuals: for each match, the mean residual of its neighbours in the
+/// image and in depth, and the log-likelihood ratio that the match moves with them rather than
+/// with the background (strategies.hpp, CoherenceEvidence, states the maths).
+///
+/// Neighbourhoods are cells of a grid over (u, v, log depth); a match's neighbours are the
+/// support matches in the 3 x 3 (x 3 with depth) cells around its own. Cell sums are box-filtered
+/// once per frame (three separable passes over the grid), so a frame costs O(n + cells), not
+/// O(n k).
+
+#include <Eigen/Core>
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+namespace hbos::detail {
+
+/// The most cells a coherence grid has (so a workspace can reserve them): image cells grow and
+/// depth layers merge beyond it.
+inline constexpr std::size_t kMaxCoherenceCells = 16384;
+
+/// Reusable buffers and the per-match inputs of coherence_evidence, column-wise.
+template <class Scalar>
+struct CoherenceWork {
+  std::vector<Scalar> dx, dy;          ///< centred, whitened residual [px/sigma]
+  std::vector<std::uint8_t> support;   ///< 1 = contributes to its neighbours' consensus
+  std::vector<std::uint32_t> cell;     ///< the match's cell
+  std::vector<Scalar> sx, sy, count;   ///< per cell, then box-filtered
+  std::vector<Scalar> tx, ty, tcount;  ///< box-filter temporaries
+};
+
+/// Fills `llr` (size n) with the coherence evidence of every match. `u`, `v` are the predicted
+/// pixels, `depth` their depths (NaN = unknown; depth is used only when every match has one),
+/// `work.dx/dy/support` must be filled; `gate` clamps each neighbour's contribution [px/sigma];
+/// `scale` is the noise scale s (> 0).
+template <class Scalar>
+void coherence_evidence(const Scalar* u, const Scalar* v, const Scalar* depth, std::size_t n,
+                        Scalar gate, Scalar scale, double cell_px, double depth_ratio, double z0,
+                        CoherenceWork<Scalar>& work, Scalar* llr) {
+  if (n == 0) return;
+  Scalar u0 = u[0], u1 = u[0], v0 = v[0], v1 = v[0];
+  bool all_depth = true;
+  Scalar l0 = std::numeric_limits<Scalar>::infinity(), l1 = -l0;
+  const Scalar inv_log_ratio = Scalar(1) / static_cast<Scalar>(std::log(depth_ratio));
+  for (std::size_t i = 0; i < n; ++i) {
+    u0 = std::min(u0, u[i]);
+    u1 = std::max(u1, u[i]);
+    v0 = std::min(v0, v[i]);
+    v1 = std::max(v1, v[i]);
+    if (!(depth[i] > Scalar(0)) || !std::isfinite(depth[i])) {
+      all_depth = false;
+    } else {
+      const Scalar layer = std::floor(std::log(depth[i]) * inv_log_ratio);
+      l0 = std::min(l0, layer);
+      l1 = std::max(l1, layer);
+    }
+  }
+  // The grid is bounded whatever the input: at most 128 cells a side and 64 depth layers (a
+  // coarser cell is used for a larger image; far depths share the last layer).
+  constexpr double kMaxSide = 128.0;  // 128 x 128 = kMaxCoherenceCells
+  const double cell = std::max({cell_px, static_cast<double>(u1 - u0) / (kMaxSide - 1.0),
+                                static_cast<double>(v1 - v0) / (kMaxSide - 1.0), 1e-9});
+  const auto nx = static_cast<std::size_t>(static_cast<double>(u1 - u0) / cell) + 1;
+  const auto ny = static_cast<std::size_t>(static_cast<double>(v1 - v0) / cell) + 1;
+  const std::size_t layers = all_depth ? static_cast<std::size_t>(l1 - l0) + 1 : 1;
+  const std::size_t max_layers = std::max<std::size_t>(1, kMaxCoherenceCells / (nx * ny));
+  const std::size_t merge = (layers + max_layers - 1) / max_layers;  // layers per grid layer
+  const std::size_t nl = (layers + merge - 1) / merge;
+  const std::size_t cells = nx * ny * nl;
+  const auto inv_cell = static_cast<Scalar>(1.0 / cell);
+  work.cell.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto cx = std::min(static_cast<std::size_t>((u[i] - u0) * inv_cell), nx - 1);
+    const auto cy = std::min(static_cast<std::size_t>((v[i] - v0) * inv_cell), ny - 1);
+    std::size_t cl = 0;
+    if (nl > 1) {
+      const Scalar layer = std::floor(std::log(depth[i]) * inv_log_ratio) - l0;
+      cl = std::min(static_cast<std::size_t>(layer) / merge, nl - 1);
+    }
+    work.cell[i] = static_cast<std::uint32_t>((cl * ny + cy) * nx + cx);
+  }
+  for (auto* a : {&work.sx, &work.sy, &work.count}) a->assign(cells, Scalar(0));
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!work.support[i]) continue;
+    const Scalar m = std::sqrt(work.dx[i] * work.dx[i] + work.dy[i] * work.dy[i]);
+    const Scalar k = m > gate ? gate / m : Scalar(1);
+    const std::uint32_t c = work.cell[i];
+    work.sx[c] += k * work.dx[i];
+    work.sy[c] += k * work.dy[i];
+    work.count[c] += Scalar(1);
+  }
+  // Separable 3-box filter along x, y and (when used) the depth layers.
+  auto box = [&](std::size_t stride, std::size_t extent) {
+    for (auto* t : {&work.tx, &work.ty, &work.tcount}) t->resize(cells);
+    for (std::size_t c = 0; c < cells; ++c) {
+      const std::size_t along = (c / stride) % extent;
+      Scalar ax = work.sx[c], ay = work.sy[c], an = work.count[c];
+      if (along > 0) {
+        ax += work.sx[c - stride];
+        ay += work.sy[c - stride];
+        an += work.count[c - stride];
+      }
+      if (along + 1 < extent) {
+        ax += work.sx[c + stride];
+        ay += work.sy[c + stride];
+        an += work.count[c + stride];
+      }
+      work.tx[c] = ax;
+      work.ty[c] = ay;
+      work.tcount[c] = an;
+    }
+    work.sx.swap(work.tx);
+    work.sy.swap(work.ty);
+    work.count.swap(work.tcount);
+  };
+  box(1, nx);
+  box(nx, ny);
+  if (nl > 1) box(nx * ny, nl);
+
+  const Scalar inv_2s2 = Scalar(1) / (Scalar(2) * scale * scale);
+  const auto zz = static_cast<Scalar>(z0);
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::uint32_t c = work.cell[i];
+    Scalar sx = work.sx[c], sy = work.sy[c], cnt = work.count[c];
+    const Scalar dx = work.dx[i], dy = work.dy[i];
+    if (work.support[i]) {  // a match is not its own neighbour
+      const Scalar m = std::sqrt(dx * dx + dy * dy);
+      const Scalar k = m > gate ? gate / m : Scalar(1);
+      sx -= k * dx;
+      sy -= k * dy;
+      cnt -= Scalar(1);
+    }
+    if (cnt < Scalar(2)) {
+      llr[i] = Scalar(0);
+      continue;
+    }
+    const Scalar cx = sx / cnt, cy = sy / cnt;
+    const Scalar norm = std::sqrt(cx * cx + cy * cy);
+    const Scalar z = norm * std::sqrt(cnt) / scale;
+    const Scalar shrink = z > zz ? Scalar(1) - zz / z : Scalar(0);
+    const Scalar px = cx * shrink, py = cy * shrink;
+    llr[i] = (Scalar(2) * (dx * px + dy * py) - (px * px + py * py)) * inv_2s2;
+  }
+}
+
+}  // namespace hbos::detail

@@ -1,0 +1,87 @@
+// The default screen against ORB-SLAM2's chi^2 gate and the 0.8 quantile on the labelled real
+// residual cases (real TUM fr1/xyz frames with real people composited in, tests/data/
+// screening_cases; the held-out set, screening_cases_holdout, was not looked at while the
+// screen was designed). The full tables are in docs/screening.md; these tests pin what holds.
+
+#include <catch2/catch.hpp>
+
+#include <hbos/screening.hpp>
+
+#include <string>
+#include <vector>
+
+#include "../support/screening_cases.hpp"
+
+namespace {
+
+struct Counts {
+  double static_dropped = 0, statics = 0, dynamic_kept = 0, dynamics = 0;
+  [[nodiscard]] double static_loss() const { return static_dropped / statics; }
+  [[nodiscard]] double dynamic_survival() const {
+    return dynamics > 0 ? dynamic_kept / dynamics : 0;
+  }
+};
+
+Counts screen_case(const hbos_test::ScreeningCase& c, const hbos::ScreenStrategy& strategy) {
+  hbos::ReprojectionScreend screen(strategy);
+  Counts k;
+  for (const hbos_test::CasePair& pair : c.pairs) {
+    const auto& r = screen.screen(pair.matches);
+    for (Eigen::Index i = 0; i < pair.size(); ++i) {
+      const auto u = static_cast<std::size_t>(i);
+      if (pair.dynamic[u] != 0) {
+        k.dynamics += 1;
+        k.dynamic_kept += r.inlier(i) ? 1 : 0;
+      } else if (pair.gross[u] == 0) {
+        k.statics += 1;
+        k.static_dropped += r.inlier(i) ? 0 : 1;
+      }
+    }
+  }
+  return k;
+}
+
+void check_collection(const std::string& root) {
+  for (const hbos_test::CasePose pose :
+       {hbos_test::CasePose::Ransac, hbos_test::CasePose::PerturbedGt}) {
+    Counts pooled_default, pooled_chi2;
+    for (const std::string& folder : hbos_test::list_case_folders(root)) {
+      const hbos_test::ScreeningCase c = hbos_test::load_screening_case(folder, pose, false);
+      const Counts d = screen_case(c, hbos::HbosScreen{});
+      const Counts chi2 = screen_case(c, hbos::ChiSquareGate{});
+      INFO(folder << (pose == hbos_test::CasePose::Ransac ? " (RANSAC)" : " (perturbed GT)")
+                  << ": static loss default " << d.static_loss() << ", chi2 " << chi2.static_loss()
+                  << "; dynamic kept default " << d.dynamic_survival() << ", chi2 "
+                  << chi2.dynamic_survival());
+      // No case costs the default more than a point of statics over chi^2 (measured: at most
+      // +0.7 under RANSAC; under a perturbed pose chi^2 loses 9-20 % and the default under 3 %).
+      CHECK(d.static_loss() <= chi2.static_loss() + 0.01);
+      if (c.is_static()) CHECK(std::abs(d.static_loss() - chi2.static_loss()) <= 0.005);
+      if (pose == hbos_test::CasePose::PerturbedGt) CHECK(d.static_loss() < chi2.static_loss());
+      pooled_default.static_dropped += d.static_dropped;
+      pooled_default.statics += d.statics;
+      pooled_default.dynamic_kept += d.dynamic_kept;
+      pooled_default.dynamics += d.dynamics;
+      pooled_chi2.dynamic_kept += chi2.dynamic_kept;
+      pooled_chi2.dynamics += chi2.dynamics;
+    }
+    // Under RANSAC (chi^2 at the same static loss) the default keeps fewer dynamic matches over
+    // the collection; per case it does not everywhere (docs/screening.md names the cases).
+    if (pose == hbos_test::CasePose::Ransac)
+      CHECK(pooled_default.dynamic_survival() < pooled_chi2.dynamic_survival() - 0.03);
+  }
+}
+
+}  // namespace
+
+TEST_CASE(
+    "real residual cases: the default loses no more statics than chi2 and keeps fewer "
+    "dynamics over the collection",
+    "[screen_v2][real]") {
+  check_collection(std::string(HBOS_TEST_DATA_DIR) + "/screening_cases");
+}
+
+TEST_CASE("held-out real residual cases: the same holds on cases the design never saw",
+          "[screen_v2][real][holdout]") {
+  check_collection(std::string(HBOS_TEST_DATA_DIR) + "/screening_cases_holdout");
+}
