@@ -68,6 +68,8 @@ cv::Mat PersonMasker::mask(int index, const cv::Mat& bgr, const cv::Mat& label) 
     case MaskSource::kDetector:
       boxes_ = detector_->detect(bgr);
       return boxes_to_mask(boxes_, bgr.size());
+    case MaskSource::kFiles:  // read by FrameSource (frontend/mask_files.hpp), not computed
+      return no_person;
   }
   return no_person;
 }

@@ -1,0 +1,186 @@
+// The benchmark end to end: the grid, the table over seeds, resuming finished cells, and (when
+// hbos-render is built) a short rendered scenario through the whole command.
+
+#include <catch2/catch.hpp>
+
+#include "dynbench/cells.hpp"
+#include "dynbench/dynbench_command.hpp"
+#include "dynbench/sequences.hpp"
+#include "dynbench/summary.hpp"
+#include "test_frontend_support.hpp"
+#include "tum_folder.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <sstream>
+#include <string>
+#include <vector>
+
+using hbos_test::ScratchDir;
+namespace fs = std::filesystem;
+
+namespace {
+
+int dynbench(const std::vector<std::string>& args, std::string* out_text = nullptr,
+             std::string* err_text = nullptr) {
+  std::vector<const char*> argv = {"hbos-dynbench"};
+  for (const std::string& a : args) argv.push_back(a.c_str());
+  std::ostringstream out, err;
+  const int rc =
+      hbos::dynbench::run_dynbench_command(static_cast<int>(argv.size()), argv.data(), out, err);
+  if (out_text != nullptr) *out_text = out.str();
+  if (err_text != nullptr) *err_text = err.str();
+  return rc;
+}
+
+std::string read_text(const fs::path& p) {
+  std::ifstream in(p);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+const nlohmann::json* row_of(const nlohmann::json& table, const std::string& mask,
+                             const std::string& screen) {
+  for (const auto& r : table["rows"]) {
+    if (r["mask"] == mask && r["screen"] == screen) return &r;
+  }
+  return nullptr;
+}
+
+}  // namespace
+
+TEST_CASE("dynbench grid: cells, names and screens", "[dynbench]") {
+  hbos::dynbench::BenchSettings s;
+  s.scenarios = {"walking_xyz"};
+  s.seeds = {1, 2};
+  s.variants = {"eroded", "boxes"};
+  const auto cells = hbos::dynbench::grid_cells(s);
+  // Per seed: none and default without a mask, then every screen (7) with each of 2 variants.
+  CHECK(cells.size() == 2 * (2 + 2 * hbos::dynbench::screens_in_order({}).size()));
+  CHECK(cells.front().id() == "walking_xyz_s1_none_none");
+  CHECK(cells[1].id() == "walking_xyz_s1_none_default");
+  CHECK(cells[2].id() == "walking_xyz_s1_eroded_none");
+  const auto order = hbos::dynbench::screens_in_order({"default", "chi2", "none"});
+  CHECK(order == std::vector<std::string>{"none", "chi2", "default"});
+  CHECK_THROWS_WITH(hbos::dynbench::screens_in_order({"hbos"}), Catch::Contains("'hbos'"));
+  hbos::dynbench::use_full_grid(s);
+  CHECK(s.scenarios.size() == 6);
+  CHECK(s.variants.size() == 8);
+  CHECK(s.frames == 0);
+}
+
+TEST_CASE("dynbench spread: mean and sample standard deviation, NaN left out", "[dynbench]") {
+  const auto s = hbos::dynbench::spread_of({1.0, 3.0, std::nan("")});
+  CHECK(s.n == 2);
+  CHECK(s.mean == Approx(2.0));
+  CHECK(s.sd == Approx(std::sqrt(2.0)));
+  CHECK(hbos::dynbench::spread_of({}).n == 0);
+}
+
+TEST_CASE("dynbench on a prepared sequence: table, JSON, figures, and resuming", "[dynbench]") {
+  // The fr1/xyz frames with the composited person stand in for a rendered walking_xyz sequence:
+  // put into the cache, they are used as they are, with no renderer.
+  ScratchDir scratch("dynbench_prepared");
+  hbos::dynbench::BenchSettings s;
+  s.cache_dir = scratch.file("cache");
+  s.frames = 10;
+  const std::string sequence = hbos::dynbench::sequence_dir(s, "walking_xyz", 1);
+  hbos_test::write_tum_folder(sequence, 10);
+  const std::vector<std::string> args = {"--scenarios", "walking_xyz",
+                                         "--seeds",     "1",
+                                         "--frames",    "10",
+                                         "--variants",  "eroded",
+                                         "--screens",   "none,default",
+                                         "--camera",    "tum1",
+                                         "--renderer",  "",
+                                         "--cache",     s.cache_dir,
+                                         "--out",       scratch.file("out"),
+                                         "--jobs",      "2",
+                                         "--quiet"};
+  std::string out, err;
+  REQUIRE(dynbench(args, &out, &err) == hbos::dynbench::kDynbenchOk);
+  INFO(err);
+  CHECK_THAT(out, Catch::Contains("| walking_xyz | eroded | default |"));
+  CHECK_THAT(out, Catch::Contains("Table III"));
+  const fs::path root = scratch.path() / "out";
+  const auto table = nlohmann::json::parse(read_text(root / "dynbench.json"));
+  REQUIRE(table["rows"].size() == 4);  // none, default alone, mask only, mask + default
+  const auto* unmasked = row_of(table, "none", "none");
+  const auto* screened = row_of(table, "none", "default");
+  const auto* masked = row_of(table, "eroded", "none");
+  REQUIRE(unmasked != nullptr);
+  REQUIRE(screened != nullptr);
+  REQUIRE(masked != nullptr);
+  // The objects/ labels count the person's matches: all kept without a screen, fewer with the
+  // eroded mask (which leaks only along the edges), and the screen removes some.
+  CHECK((*unmasked)["dynamic_matches"].get<long>() > 50);
+  CHECK((*unmasked)["dynamic_matches_kept_pct"]["mean"].get<double>() == Approx(100.0));
+  CHECK((*masked)["dynamic_matches"].get<long>() < (*unmasked)["dynamic_matches"].get<long>());
+  CHECK((*screened)["dynamic_matches_kept_pct"]["mean"].get<double>() < 100.0);
+  CHECK((*unmasked)["ate_rmse_cm"]["n"] == 1);
+  CHECK(fs::is_regular_file(root / "dynbench.md"));
+  CHECK(fs::is_regular_file(root / "figures" / "trajectories.png"));
+  CHECK(fs::is_regular_file(root / "figures" / "residual_histogram.png"));
+  CHECK(fs::is_regular_file(root / "figures" / "matches_mask.png"));
+
+  // Re-run: every cell is taken from its cell.json, unchanged.
+  const fs::path cell = root / "cells" / "walking_xyz_s1_eroded_default" / "cell.json";
+  const fs::path other = root / "cells" / "walking_xyz_s1_none_none" / "cell.json";
+  const std::string before = read_text(cell), before_other = read_text(other);
+  REQUIRE(dynbench(args, &out, &err) == hbos::dynbench::kDynbenchOk);
+  CHECK(read_text(cell) == before);
+  // An unfinished cell (no cell.json: interrupted) is run again; the finished ones are not.
+  fs::remove(cell);
+  REQUIRE(dynbench(args, &out, &err) == hbos::dynbench::kDynbenchOk);
+  CHECK(fs::is_regular_file(cell));
+  CHECK(read_text(other) == before_other);
+  // Other settings are other cells: they are run again.
+  std::vector<std::string> two_rounds = args;
+  two_rounds.insert(two_rounds.end(), {"--rounds", "2"});
+  REQUIRE(dynbench(two_rounds, &out, &err) == hbos::dynbench::kDynbenchOk);
+  CHECK(read_text(other) != before_other);
+}
+
+TEST_CASE("dynbench: bad input exits 2 with the reason", "[dynbench]") {
+  ScratchDir scratch("dynbench_bad");
+  std::string err;
+  CHECK(dynbench({"--scenarios", "walking_upside_down", "--quiet"}, nullptr, &err) ==
+        hbos::dynbench::kDynbenchBadInput);
+  CHECK_THAT(err, Catch::Contains("walking_upside_down"));
+  CHECK(dynbench({"--screens", "hbos", "--quiet", "--out", scratch.file("o")}, nullptr, &err) ==
+        hbos::dynbench::kDynbenchBadInput);
+  CHECK_THAT(err, Catch::Contains("'hbos'"));
+  CHECK(dynbench(
+            {"--renderer", scratch.file("no-such-renderer"), "--out", scratch.file("o"), "--quiet"},
+            nullptr, &err) == hbos::dynbench::kDynbenchBadInput);
+  CHECK_THAT(err, Catch::Contains("no-such-renderer"));
+}
+
+TEST_CASE("dynbench end to end on a short rendered scenario", "[dynbench][render]") {
+  const std::string renderer = hbos::dynbench::built_renderer();
+  if (renderer.empty() || !fs::is_regular_file(renderer)) {
+    WARN("hbos-render is not built (OSMesa missing): the rendered end-to-end test is skipped");
+    return;
+  }
+  ScratchDir scratch("dynbench_rendered");
+  std::string out, err;
+  const int rc =
+      dynbench({"--scenarios", "walking_xyz", "--seeds", "1", "--frames", "20", "--variants",
+                "perfect", "--screens", "none,default", "--out", scratch.file("out"), "--quiet"},
+               &out, &err);
+  INFO(err);
+  REQUIRE(rc == hbos::dynbench::kDynbenchOk);
+  const auto table = nlohmann::json::parse(read_text(scratch.path() / "out" / "dynbench.json"));
+  REQUIRE(table["rows"].size() == 4);
+  const auto* unmasked = row_of(table, "none", "none");
+  const auto* masked = row_of(table, "perfect", "none");
+  REQUIRE(unmasked != nullptr);
+  REQUIRE(masked != nullptr);
+  // The rendered people are in view and labelled; the perfect mask leaves (almost) none.
+  CHECK((*unmasked)["dynamic_matches"].get<long>() > 0);
+  CHECK((*masked)["dynamic_matches"].get<long>() < (*unmasked)["dynamic_matches"].get<long>());
+  CHECK((*unmasked)["frames_tracked_pct"]["mean"].get<double>() > 50.0);
+}

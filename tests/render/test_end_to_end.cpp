@@ -1,0 +1,135 @@
+// A short scenario renders end to end into a TUM folder; written twice it is the same bytes.
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
+
+#include "render/writer.hpp"
+
+using namespace hbos::render;
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string slurp(const fs::path& p) {
+  std::ifstream f(p, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(f), {});
+}
+
+std::vector<std::string> data_lines(const fs::path& p) {
+  std::vector<std::string> out;
+  std::istringstream in(slurp(p));
+  for (std::string l; std::getline(in, l);) {
+    if (!l.empty() && l[0] != '#') out.push_back(l);
+  }
+  return out;
+}
+
+fs::path scratch(const std::string& name) {
+  const fs::path p = fs::temp_directory_path() / ("hbos_render_test_" + name);
+  fs::remove_all(p);
+  return p;
+}
+
+}  // namespace
+
+TEST_CASE("a 30-frame scenario renders to a complete TUM folder") {
+  SequenceOptions o;
+  o.scenario = "walking_static";
+  o.frames = 30;
+  o.seed = 5;
+  SequenceRenderer r(o);
+  const fs::path out = scratch("e2e");
+  int calls = 0;
+  const WriteStats s = write_sequence(r, out, false, [&](int, int) { ++calls; });
+  CHECK(s.frames == 30);
+  CHECK(calls == 30);
+  CHECK_FALSE(fs::exists(out.string() + ".tmp"));
+  const auto rgb = data_lines(out / "rgb.txt");
+  const auto depth = data_lines(out / "depth.txt");
+  const auto gt = data_lines(out / "groundtruth.txt");
+  REQUIRE(rgb.size() == 30);
+  REQUIRE(depth.size() == 30);
+  REQUIRE(gt.size() == 30);
+  CHECK(slurp(out / "groundtruth.txt").rfind("# ground truth trajectory\n", 0) == 0);
+  // The first stamp is the ground truth's first, then 1/30 s apart.
+  double prev = 0;
+  for (std::size_t i = 0; i < rgb.size(); ++i) {
+    std::istringstream ls(rgb[i]);
+    double stamp = 0;
+    std::string file;
+    ls >> stamp >> file;
+    if (i == 0) CHECK(stamp == Approx(1341846226.9190).margin(1e-6));
+    if (i > 0) CHECK(stamp - prev == Approx(1.0 / 30.0).margin(2e-6));
+    prev = stamp;
+    REQUIRE(fs::exists(out / file));
+    const std::string name = fs::path(file).filename().string();
+    const cv::Mat d = cv::imread((out / "depth" / name).string(), cv::IMREAD_UNCHANGED);
+    REQUIRE(d.type() == CV_16U);
+    REQUIRE(fs::exists(out / "objects" / name));
+    for (const auto& v : mask_variant_names()) REQUIRE(fs::exists(out / "masks" / v / name));
+    std::istringstream gs(gt[i]);
+    double gstamp = 0, x = 0;
+    gs >> gstamp;
+    int fields = 0;
+    while (gs >> x) ++fields;
+    CHECK(fields == 7);
+    CHECK(gstamp == stamp);
+  }
+  // Depth in range: some valid returns between 0.5 and 5 m (5000 units per metre), and holes.
+  const cv::Mat d0 = cv::imread(
+      (out / "depth" / (fs::path(rgb[0].substr(rgb[0].find(' ') + 1)).filename())).string(),
+      cv::IMREAD_UNCHANGED);
+  double lo = 0, hi = 0;
+  cv::minMaxLoc(d0, &lo, &hi);
+  CHECK(lo == 0.0);
+  // The range cut is on the true depth; noise of up to 5 sigma(max range) may lie beyond it.
+  const KinectModel km;
+  const double sigma_max =
+      km.sigma_a + km.sigma_b * (km.max_range - km.sigma_z0) * (km.max_range - km.sigma_z0);
+  CHECK(hi <= (km.max_range + 5 * sigma_max) * km.depth_scale);
+  CHECK(hi > 0.8 * km.max_range * km.depth_scale);
+  CHECK(cv::countNonZero(d0) > static_cast<int>(d0.total() / 2));
+  const auto j = nlohmann::json::parse(slurp(out / "scenario.json"));
+  CHECK(j["scenario"] == "walking_static");
+  CHECK(j["seed"] == 5);
+  CHECK(j["frames"] == 30);
+  CHECK(j["renderer_version"] == kRendererVersion);
+  CHECK(j["people"].size() == 2);
+  CHECK(j["objects"][0]["id"] == 3);
+  // The folder exists now: a second write refuses, unless told to overwrite.
+  CHECK_THROWS_AS(write_sequence(r, out, false), OutputError);
+  fs::remove_all(out);
+}
+
+TEST_CASE("the same scenario and seed write the same bytes, file for file") {
+  std::vector<fs::path> outs;
+  for (int k = 0; k < 2; ++k) {
+    SequenceOptions o;
+    o.scenario = "sitting_xyz";
+    o.frames = 6;
+    o.seed = 9;
+    SequenceRenderer r(o);
+    outs.push_back(scratch("same" + std::to_string(k)));
+    write_sequence(r, outs.back(), false);
+  }
+  int files = 0;
+  for (const auto& e : fs::recursive_directory_iterator(outs[0])) {
+    if (!e.is_regular_file()) continue;
+    const fs::path rel = fs::relative(e.path(), outs[0]);
+    INFO(rel.string());
+    REQUIRE(fs::exists(outs[1] / rel));
+    CHECK(slurp(e.path()) == slurp(outs[1] / rel));
+    ++files;
+  }
+  // 6 frames x (rgb, depth, objects, 8 masks) + 5 index files.
+  CHECK(files == 6 * 11 + 5);
+  for (const auto& p : outs) fs::remove_all(p);
+}
