@@ -3,7 +3,9 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <chrono>
 #include <ostream>
+#include <utility>
 
 namespace hbos::slam {
 
@@ -61,14 +63,23 @@ RunTotals total_of(const std::vector<FrameStats>& stats) {
 }
 
 RunResult run_tracker(const std::function<Frame(int)>& frame_at, int n, const Config& config,
-                      const CameraModel& camera, std::ostream* progress) {
+                      const CameraModel& camera, std::ostream* progress,
+                      const volatile std::sig_atomic_t* stop) {
   Tracker tracker(config, camera);
   RunResult run;
   const int chosen = config.output.figure_frame;
   int best_person_matches = -1;
   for (int i = 0; i < n; ++i) {
+    if (stop != nullptr && *stop != 0) {
+      run.interrupted = true;
+      break;
+    }
     Frame frame = frame_at(i);
+    const auto track_start = std::chrono::steady_clock::now();
     TrackResult result = tracker.track(frame);
+    run.track_us.push_back(
+        std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - track_start)
+            .count());
     run.stamps.push_back(frame.stamp);
     run.poses.push_back(result.T_world_camera);
     run.stats.push_back(result.stats);
@@ -108,7 +119,15 @@ Evaluation evaluate_trajectory(const Trajectory& groundtruth, const Trajectory& 
 }
 
 Trajectory estimate_of(const RunResult& run, const std::string& name) {
-  return make_trajectory(name, run.stamps, run.poses);
+  // A frame without a pose (the map tracker's lost frames carry NaN) is left out, never written.
+  std::vector<double> stamps;
+  std::vector<Eigen::Isometry3d> poses;
+  for (std::size_t i = 0; i < run.poses.size() && i < run.stamps.size(); ++i) {
+    if (!run.poses[i].matrix().allFinite()) continue;
+    stamps.push_back(run.stamps[i]);
+    poses.push_back(run.poses[i]);
+  }
+  return make_trajectory(name, std::move(stamps), poses);
 }
 
 }  // namespace hbos::slam

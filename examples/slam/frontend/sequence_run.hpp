@@ -13,6 +13,7 @@
 
 #include <Eigen/Geometry>
 
+#include <csignal>
 #include <functional>
 #include <iosfwd>
 #include <optional>
@@ -53,17 +54,24 @@ struct RunResult {
   std::vector<double> stamps;            ///< [s] one per frame
   std::vector<Eigen::Isometry3d> poses;  ///< T_world_camera, the first frame = identity
   std::vector<FrameStats> stats;
+  /// [us] per frame, the whole Tracker::track call (every stage after the mask); filled by
+  /// run_tracker, empty where a tracker does not measure it.
+  std::vector<double> track_us;
   RunTotals totals;
   std::optional<FigureFrame> figure;     ///< the frame chosen for the figures
   std::optional<Evaluation> evaluation;  ///< when the sequence has ground truth
+  bool interrupted = false;              ///< stopped by `stop` before frame n-1
 };
 
 /// Tracks frames 0 .. n-1 given by `frame_at` with a fresh Tracker. The figure frame is
 /// `output.figure_frame`, or with -1 the one with the most person matches (else the middle one).
-/// With `progress`, one line per frame is written to it.
+/// With `progress`, one line per frame is written to it. When `stop` is given and becomes
+/// non-zero (a SIGINT handler sets it), the run ends after the frame in progress: the result
+/// holds the frames done so far and `interrupted` is set.
 [[nodiscard]] RunResult run_tracker(const std::function<Frame(int)>& frame_at, int n,
                                     const Config& config, const CameraModel& camera,
-                                    std::ostream* progress);
+                                    std::ostream* progress,
+                                    const volatile std::sig_atomic_t* stop = nullptr);
 
 /// The ATE (SE(3)-aligned, as evaluate_ate.py) and, from 4 poses on, the per-frame RPE (delta
 /// 1 frame) of the estimate against `groundtruth`; `frame_stamps` count the frames for the share
@@ -73,7 +81,8 @@ struct RunResult {
                                              const Trajectory& estimate,
                                              const std::vector<double>& frame_stamps);
 
-/// The run's estimate as a Trajectory named `name`.
+/// The run's estimate as a Trajectory named `name`: the frames whose pose is finite (a lost
+/// frame of the map tracker has a NaN pose and is left out).
 [[nodiscard]] Trajectory estimate_of(const RunResult& run, const std::string& name);
 
 }  // namespace hbos::slam

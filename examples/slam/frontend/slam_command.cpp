@@ -1,11 +1,16 @@
 #include "frontend/slam_command.hpp"
 
 #include "common/atomic_file.hpp"
+#include "common/cli_validators.hpp"
 #include "frontend/ablation.hpp"
 #include "frontend/camera.hpp"
 #include "frontend/config.hpp"
 #include "frontend/dataset.hpp"
 #include "frontend/frame_source.hpp"
+#include "frontend/map/map_report.hpp"
+#include "frontend/map/map_run.hpp"
+#include "frontend/mask_files.hpp"
+#include "frontend/orb_extraction.hpp"
 #include "frontend/residual_screen.hpp"
 #include "frontend/run_outputs.hpp"
 #include "frontend/sequence_run.hpp"
@@ -14,7 +19,16 @@
 #include <CLI/CLI.hpp>
 #include <hbos/error.hpp>
 
+#include <signal.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <csignal>
+#include <cstdlib>
+#include <cstring>
 #include <filesystem>
+#include <iostream>
+#include <optional>
 #include <ostream>
 #include <stdexcept>
 #include <string>
@@ -33,6 +47,8 @@ struct CommandOptions {
   std::string scenario = "person";
   std::string mask = "degraded";
   std::string rough_pose = "ransac";
+  std::string tracker = "frame";
+  std::string mask_convention = "dynaslam";  ///< of --mask-dir's files
   bool quiet = false;
   bool ablation = false;
 };
@@ -47,7 +63,7 @@ void add_options(CLI::App& app, CommandOptions& o) {
       ->capture_default_str();
   app.add_option("--frames", c.dataset.max_frames, "use only the first N frames (0 = all)")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+      ->check(examples::non_negative_number());
   app.add_option("--scenario", o.scenario,
                  "static: the sequence as recorded; person: a real person composited in")
       ->capture_default_str()
@@ -57,7 +73,7 @@ void add_options(CLI::App& app, CommandOptions& o) {
       ->capture_default_str();
   app.add_option("--person-depth", c.scenario.depth_m, "median depth of the person [m]")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(examples::positive_number());
   app.add_option("--person-start", c.scenario.start_x_px, "left edge of the person in frame 0 [px]")
       ->capture_default_str();
   app.add_option("--person-speed", c.scenario.speed_px_per_frame,
@@ -65,12 +81,20 @@ void add_options(CLI::App& app, CommandOptions& o) {
       ->capture_default_str();
   app.add_option("--mask", o.mask, "dynamic-object mask the features avoid")
       ->capture_default_str()
-      ->check(CLI::IsMember({"none", "exact", "degraded", "detector"}));
+      ->check(CLI::IsMember({"none", "exact", "degraded", "detector", "files"}));
+  app.add_option("--mask-dir", c.mask.files_dir,
+                 "masks from files, one per frame matched by rgb file name or stamp (implies "
+                 "--mask files and, unless given, --scenario static)");
+  app.add_option("--mask-convention", o.mask_convention,
+                 "--mask-dir files: dynaslam (0 = dynamic) or nonzero-dynamic")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"dynaslam", "nonzero-dynamic"}));
   app.add_option("--detector-dir", c.mask.detector_dir,
                  "folder with yolo-fastest-1.1_body.cfg and .weights")
       ->capture_default_str();
-  app.add_option("--screen", c.screen.strategy, "residual screen")
-      ->capture_default_str()
+  app.add_option_function<std::string>(
+         "--screen", [&c](const std::string& name) { c.screen.select(name); },
+         "residual screen (default: " + c.screen.name + ")")
       ->check(CLI::IsMember(screen_strategy_names()));
   app.add_option("--rounds", c.screen.rounds, "screen -> refine -> re-screen rounds")
       ->capture_default_str()
@@ -81,19 +105,92 @@ void add_options(CLI::App& app, CommandOptions& o) {
   app.add_option("--ransac-px", c.rough_pose.ransac_threshold_px,
                  "PnP RANSAC inlier threshold [px]")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
-  app.add_option("--features", c.extraction.features, "ORB features per frame")
+      ->check(examples::positive_number());
+  app.add_option("--features", c.extraction.features, "ORB features per frame (1 to 100000)")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::Range(1, kMaxOrbFeatures));
   app.add_option("--out", c.output.dir, "output folder")->capture_default_str();
   app.add_option("--figure-frame", c.output.figure_frame,
                  "frame drawn in matches.png / residual_histogram.png (-1: most person matches)")
       ->capture_default_str()
       ->check(CLI::Range(-1, 1000000));
+  app.add_option("--tracker", o.tracker,
+                 "frame: frame-to-frame odometry; map: tracking against a local map of keyframes "
+                 "(docs/map_tracking.md)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"frame", "map"}));
   app.add_flag("--quiet", o.quiet, "no per-frame progress on stderr");
   app.add_flag("--ablation", o.ablation,
                "run every screen x mask on the static and the person scenario and write "
                "ablation.md and ablation.csv into --out");
+}
+
+// ---- Ctrl-C: stop after the frame in progress and write what the run has --------------------
+
+volatile std::sig_atomic_t g_stop = 0;
+
+extern "C" void request_stop(int) { g_stop = 1; }
+
+/// While alive, SIGINT and SIGTERM set g_stop instead of ending the process; a second signal
+/// after the first ends it as usual (the default is back), so a stuck run can still be killed.
+class StopOnSignal {
+ public:
+  StopOnSignal() {
+    g_stop = 0;
+    struct sigaction action {};
+    action.sa_handler = &request_stop;
+    sigemptyset(&action.sa_mask);
+    action.sa_flags = static_cast<int>(SA_RESETHAND);
+    ::sigaction(SIGINT, &action, &previous_int_);
+    ::sigaction(SIGTERM, &action, &previous_term_);
+  }
+  StopOnSignal(const StopOnSignal&) = delete;
+  StopOnSignal& operator=(const StopOnSignal&) = delete;
+  ~StopOnSignal() {
+    ::sigaction(SIGINT, &previous_int_, nullptr);
+    ::sigaction(SIGTERM, &previous_term_, nullptr);
+  }
+  [[nodiscard]] static bool stopped() { return g_stop != 0; }
+
+ private:
+  struct sigaction previous_int_ {};
+  struct sigaction previous_term_ {};
+};
+
+// ---- checks before the run ----------------------------------------------------------------
+
+/// Creates the output folder and proves it writable with a probe file, so that a run is not
+/// wasted on an output that cannot be written.
+void prepare_output_dir(const std::string& dir) {
+  namespace fs = std::filesystem;
+  std::error_code error;
+  if (fs::exists(dir, error) && !fs::is_directory(dir, error)) {
+    throw InvalidArgument(fmt::format("--out '{}' exists and is not a directory", dir));
+  }
+  fs::create_directories(dir, error);
+  if (error) {
+    throw InvalidArgument(fmt::format("--out '{}': cannot create: {}", dir, error.message()));
+  }
+  std::string probe = (fs::path(dir) / ".hbos-slam-probe-XXXXXX").string();
+  const int fd = ::mkstemp(probe.data());
+  if (fd < 0) {
+    throw InvalidArgument(fmt::format("--out '{}' is not writable: {}", dir, std::strerror(errno)));
+  }
+  ::close(fd);
+  ::unlink(probe.c_str());
+}
+
+/// Everything a run needs, checked before its first frame: every image of the frames to run
+/// exists and opens, the first frame decodes and the camera's principal point lies inside it,
+/// and --out can be written.
+void check_run_inputs(const Config& config, const CameraModel& camera,
+                      const RgbdSequence& sequence) {
+  check_sequence_files(sequence, config.dataset.max_frames);
+  const RgbdImages first = read_frame_images(sequence, 0, camera.depth_factor);
+  check_camera_fits_image(
+      camera, first.bgr.cols, first.bgr.rows,
+      (std::filesystem::path(sequence.root) / sequence.frames[0].rgb.path).string());
+  prepare_output_dir(config.output.dir);
 }
 
 std::string percent_or_na(const std::optional<double>& share) {
@@ -110,8 +207,27 @@ int run_single(const CommandOptions& o, const CameraModel& camera, const RgbdSeq
     throw InvalidArgument(fmt::format("--figure-frame {} is beyond the {} frames run",
                                       config.output.figure_frame, n));
   }
-  RunResult run = run_tracker([&](int i) { return source.frame(i); }, n, config, camera,
-                              o.quiet ? nullptr : &err);
+  check_run_inputs(config, camera, sequence);
+  const StopOnSignal stop_on_signal;
+  std::optional<MapRun> map_run;  // --tracker map: the run and what only the map tracker measures
+  RunResult frame_run;
+  if (config.tracker == TrackerKind::kMap) {
+    // A bar redrawn in place on a terminal, one line per frame in a log.
+    const bool terminal = &err == &std::cerr && ::isatty(STDERR_FILENO) == 1;
+    map_run = run_map_tracker([&](int i) { return source.frame(i); }, n, config, camera,
+                              o.quiet ? nullptr : &err,
+                              terminal ? ProgressStyle::kBar : ProgressStyle::kLines, &g_stop);
+  } else {
+    frame_run = run_tracker([&](int i) { return source.frame(i); }, n, config, camera,
+                            o.quiet ? nullptr : &err, &g_stop);
+  }
+  RunResult& run = map_run ? map_run->run : frame_run;
+  const bool interrupted = StopOnSignal::stopped();
+  if (interrupted) {
+    err << fmt::format("hbos-slam: interrupted after {} of {} frames; writing them\n",
+                       run.stats.size(), n);
+    if (run.stats.empty()) return kSlamInterrupted;
+  }
   const Trajectory* groundtruth = sequence.groundtruth ? &*sequence.groundtruth : nullptr;
   if (groundtruth != nullptr) {
     try {
@@ -125,9 +241,9 @@ int run_single(const CommandOptions& o, const CameraModel& camera, const RgbdSeq
 
   const RunTotals& t = run.totals;
   out << fmt::format(
-      "hbos-slam: {} frames of {} | {} scenario, mask {}, screen {}, rough pose {}\n", n,
-      config.dataset.path, scenario_name(config.scenario), to_string(config.mask.source),
-      config.screen.strategy, to_string(config.rough_pose.method));
+      "hbos-slam: {} frames of {} | {} scenario, mask {}, screen {}, rough pose {}\n",
+      run.stats.size(), config.dataset.path, scenario_name(config.scenario),
+      to_string(config.mask.source), config.screen.name, to_string(config.rough_pose.method));
   if (run.evaluation) {
     const Evaluation& e = *run.evaluation;
     out << fmt::format("  ATE RMSE {:.2f} cm (mean {:.2f}, max {:.2f}) over {} poses",
@@ -149,16 +265,22 @@ int run_single(const CommandOptions& o, const CameraModel& camera, const RgbdSeq
       percent_or_na(t.person_survival_share), t.person_survivors, t.person_matches,
       100.0 * t.static_loss_share, t.mean_screen_us, t.median_screen_us, t.mean_refine_us,
       t.mean_mask_us / 1000.0, t.frames_tracked, t.frames);
+  if (map_run) out << map_summary_text(*map_run);
   try {
     for (const std::string& path :
          write_run_outputs(config.output.dir, run, config, camera.name, groundtruth)) {
       out << "wrote " << path << "\n";
     }
+    if (map_run) {
+      for (const std::string& path : write_map_outputs(config.output.dir, *map_run)) {
+        out << "wrote " << path << "\n";
+      }
+    }
   } catch (const std::runtime_error& e) {
     err << "hbos-slam: error: " << e.what() << "\n";
-    return kSlamOutputError;
+    return interrupted ? kSlamInterrupted : kSlamOutputError;
   }
-  return kSlamOk;
+  return interrupted ? kSlamInterrupted : kSlamOk;
 }
 
 int run_ablation_command(const CommandOptions& o, const CameraModel& camera,
@@ -206,9 +328,25 @@ int run_slam_command(int argc, const char* const* argv, std::ostream& out, std::
   } catch (const CLI::ParseError& e) {
     return app.exit(e, out, err) == 0 ? kSlamOk : kSlamBadInput;
   }
+  if (!options.config.mask.files_dir.empty()) {
+    // Masks from files come with their own sequence: nothing is composited unless asked.
+    if (app.count("--mask") > 0 && options.mask != "files") {
+      err << "hbos-slam: error: --mask-dir needs --mask files (or no --mask), got --mask "
+          << options.mask << "\n";
+      return kSlamBadInput;
+    }
+    options.mask = "files";
+    if (app.count("--scenario") == 0) options.scenario = "static";
+  } else if (options.mask == "files") {
+    err << "hbos-slam: error: --mask files needs --mask-dir DIR\n";
+    return kSlamBadInput;
+  }
+  options.config.mask.files_convention = parse_mask_convention(options.mask_convention);
+  options.config.mask.files_max_difference = options.config.dataset.max_association_difference;
   options.config.scenario.add_person = options.scenario == "person";
   options.config.mask.source = parse_mask_source(options.mask);
   options.config.rough_pose.method = parse_rough_pose_method(options.rough_pose);
+  options.config.tracker = options.tracker == "map" ? TrackerKind::kMap : TrackerKind::kFrame;
   options.config.output.progress = !options.quiet;
   try {
     const CameraModel camera = load_camera(options.config.dataset.camera);

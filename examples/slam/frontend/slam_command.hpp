@@ -11,6 +11,9 @@ enum SlamExitCode : int {
   kSlamOk = 0,
   kSlamOutputError = 1,  ///< a result file could not be written
   kSlamBadInput = 2,     ///< bad option, missing or malformed dataset, unreadable image or model
+  /// SIGINT/SIGTERM during the run: the frames done so far were written (128 + SIGINT, as a
+  /// shell reports a Ctrl-C).
+  kSlamInterrupted = 130,
 };
 
 /// `hbos-slam [options]`: tracks a TUM RGB-D sequence (by default the embedded 37 fr1/xyz frames

@@ -15,6 +15,7 @@ target_sources(hbos_slam PRIVATE
   ${_hbos_frontend_dir}/figures.cpp
   ${_hbos_frontend_dir}/frame_matching.cpp
   ${_hbos_frontend_dir}/frame_source.cpp
+  ${_hbos_frontend_dir}/mask_files.cpp
   ${_hbos_frontend_dir}/orb_extraction.cpp
   ${_hbos_frontend_dir}/person_detector.cpp
   ${_hbos_frontend_dir}/person_mask.cpp
@@ -26,6 +27,16 @@ target_sources(hbos_slam PRIVATE
   ${_hbos_frontend_dir}/sequence_run.cpp
   ${_hbos_frontend_dir}/slam_command.cpp
   ${_hbos_frontend_dir}/tracker.cpp)
+# The map tracker (--tracker map): one file per stage under map/.
+target_sources(hbos_slam PRIVATE
+  ${_hbos_frontend_dir}/map/keyframe_policy.cpp
+  ${_hbos_frontend_dir}/map/map.cpp
+  ${_hbos_frontend_dir}/map/map_point.cpp
+  ${_hbos_frontend_dir}/map/map_report.cpp
+  ${_hbos_frontend_dir}/map/map_run.cpp
+  ${_hbos_frontend_dir}/map/map_tracker.cpp
+  ${_hbos_frontend_dir}/map/projection_matcher.cpp
+  ${_hbos_frontend_dir}/map/relocaliser.cpp)
 
 # The embedded data (examples/slam/data): the default input of hbos-slam and the tests' input.
 get_filename_component(_hbos_slam_data_dir ${_hbos_frontend_dir}/../data ABSOLUTE)

@@ -56,32 +56,51 @@ TrackResult Tracker::track(const Frame& frame) {
   }
   stats.matches = static_cast<int>(pairs.size());
 
+  // "Tracked" is decided on the final pose, after RANSAC, the screen and the refinement: a
+  // frame is tracked when at least min_matches_ screened matches reproject within ORB-SLAM2's
+  // chi-square gate under the refined pose. Otherwise (too few matches, a black or featureless
+  // frame, a pose no inlier set supports) the frame keeps the constant-velocity prediction:
+  // its pose continues the last tracked motion, never a jump made up from noise.
   Eigen::Isometry3d T_cur_prev = velocity_;
-  stats.tracked = stats.matches >= min_matches_;
-  if (stats.tracked) {
+  bool supported = false;
+  if (stats.matches >= min_matches_) {
     // 4. Rough pose from the matches (PnP RANSAC; constant velocity as fallback).
     const RoughPose rough = rough_pose_.estimate(points_prev, observed, velocity_);
-    T_cur_prev = rough.T_cur_prev;
+    Eigen::Isometry3d T_candidate = rough.T_cur_prev;
     stats.rough_from_ransac = rough.from_ransac;
     stats.ransac_inliers = rough.ransac_inliers;
 
     // 5. Screen the reprojection residuals under the rough pose; between rounds the pose is
     //    refined on the survivors and the residuals measured again.
-    out.screen = screen_.screen(points_prev, observed, sigma, T_cur_prev, refiner_);
+    out.screen = screen_.screen(points_prev, observed, sigma, T_candidate, refiner_);
 
     // 6. Refine the pose on the final survivors.
     Eigen::Index survivors = 0;
     for (const std::uint8_t k : out.screen.inlier) survivors += k;
     if (survivors >= min_matches_) {
       const auto start = std::chrono::steady_clock::now();
-      refiner_.refine(points_prev, observed, sigma, out.screen.inlier, T_cur_prev);
+      refiner_.refine(points_prev, observed, sigma, out.screen.inlier, T_candidate);
       out.screen.refine_us +=
           std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start)
               .count();
+      // The final pose's support: survivors within the gate under the refined pose.
+      constexpr double kChi2Gate = 5.991;  // 95 % of chi-square with 2 dof, as ORB-SLAM2
+      Eigen::Index support = 0;
+      for (std::size_t i = 0; i < out.screen.inlier.size(); ++i) {
+        if (out.screen.inlier[i] == 0) continue;
+        const Eigen::Vector3d p = T_candidate * points_prev[i];
+        if (!(p.z() > 0.0)) continue;
+        const double r2 = (camera.project(p) - observed[i]).squaredNorm() / (sigma[i] * sigma[i]);
+        support += r2 <= kChi2Gate ? 1 : 0;
+      }
+      supported = support >= min_matches_ && T_candidate.matrix().allFinite();
     }
+    if (supported) T_cur_prev = T_candidate;
   }
+  stats.tracked = supported;
 
-  // 7. Chain the motion onto the trajectory and keep it as the next constant-velocity guess.
+  // 7. Chain the motion onto the trajectory and keep it as the next constant-velocity guess
+  //    (an untracked frame repeats the last motion, so the velocity stays as it was).
   T_world_previous_ = T_world_previous_ * T_cur_prev.inverse();
   velocity_ = T_cur_prev;
   out.T_world_camera = T_world_previous_;

@@ -34,7 +34,9 @@ struct FrameStats {
   int static_dropped = 0;          ///< static and rejected
   bool rough_from_ransac = false;  ///< false: constant velocity (by choice or fallback)
   int ransac_inliers = 0;
-  bool tracked = false;  ///< enough matches to estimate a pose (else constant velocity)
+  /// The final (refined) pose has >= screen.min_inliers screened matches within the chi-square
+  /// gate; else the frame took the constant-velocity prediction.
+  bool tracked = false;
   double threshold = std::numeric_limits<double>::quiet_NaN();  ///< the screen's cut; NaN: none
   double screen_us = 0.0;  ///< [us] screening time, refinement excluded
   double refine_us = 0.0;  ///< [us] pose refinement time (between rounds and final)

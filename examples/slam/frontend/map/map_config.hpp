@@ -1,0 +1,83 @@
+#pragma once
+/// \file
+/// Settings of the map tracker (`hbos-slam --tracker map`), one group per stage, with
+/// ORB-SLAM2's values (Tracking.cc, ORBmatcher.cc, MapPoint.cc) as defaults where it has one.
+/// The stages shared with the frame tracker (ORB, rough pose, screen, refinement) keep their own
+/// groups in frontend/config.hpp.
+
+namespace hbos::slam {
+
+/// Projection matching (ORBmatcher::SearchByProjection).
+struct ProjectionMatchConfig {
+  int max_hamming = 100;            ///< [bits] ORB-SLAM2's TH_HIGH for projection searches
+  int max_hamming_descriptor = 50;  ///< [bits] TH_LOW, for descriptor-only (keyframe) matching
+  float ratio = 0.8f;               ///< best / second best, when both lie on the same level
+  /// [px at level 0] last-frame search radius, times 1.2^octave (ORB-SLAM2 RGB-D: 15)
+  float last_frame_radius_px = 15.f;
+  /// [px at level 0] local-map search radius, times 1.2^predicted octave and the viewing-angle
+  /// factor (2.5 head-on, else 4; ORB-SLAM2: th = 1, 5 right after relocalisation)
+  float local_map_radius_px = 1.f;
+  float relocalised_radius_px = 5.f;
+  bool check_orientation = true;    ///< rotation-consistency histogram (30 bins, top 3 kept)
+  int min_last_frame_matches = 20;  ///< below: retry with twice the radius, then the keyframe
+  int min_reference_matches = 15;   ///< below: the reference keyframe cannot track either
+};
+
+/// The local map (Tracking::UpdateLocalKeyFrames).
+struct LocalMapConfig {
+  int max_keyframes = 20;  ///< [keyframes] cap (ORB-SLAM2: 80); the most sharing come first
+  int neighbours = 5;      ///< [keyframes] best covisible neighbours added per local keyframe
+  float viewing_cos_limit = 0.5f;  ///< a point seen more than 60 deg off its mean view is skipped
+};
+
+/// Keyframe insertion (Tracking::NeedNewKeyFrame, RGB-D branch).
+struct KeyframeConfig {
+  int max_frames = 30;            ///< [frames] insert at the latest after this many (fps)
+  int min_frames = 0;             ///< [frames] insert at the earliest after this many
+  float reference_ratio = 0.75f;  ///< tracked below this share of the reference's points: insert
+  int min_tracked = 15;           ///< never insert with this few tracked points or fewer
+  float close_depth_m = 3.0f;     ///< [m] "close" points (ORB-SLAM2: bf * ThDepth / fx = 3.0 m)
+  int tracked_close_min = 100;    ///< fewer tracked close points than this, and
+  int untracked_close_min = 70;   ///< more close points without a map point: insert
+  int min_new_points = 100;       ///< new points: all closer than close_depth_m, at least this many
+  int init_min_features = 500;    ///< the first keyframe needs this many keypoints (ORB-SLAM2: 500)
+};
+
+/// Tracking success and relocalisation (Tracking::Relocalization).
+struct RelocalisationConfig {
+  int min_inliers = 30;                ///< tracked when this many survive (ORB-SLAM2: 30)
+  int min_inliers_relocalised = 50;    ///< ... in the frames right after relocalisation (50)
+  int recent_keyframes = 8;            ///< candidates: the most recent keyframes
+  int min_matches = 15;                ///< descriptor matches a candidate needs for PnP
+  float ratio = 0.75f;                 ///< Lowe ratio of those matches (ORB-SLAM2: 0.75)
+  double ransac_threshold_px = 2.447;  ///< [px at level 0] sqrt(5.991), ORB-SLAM2's PnP gate
+  int ransac_iterations = 300;
+  int min_pnp_inliers = 20;    ///< PnP inliers to try the pose against the local map
+  double max_jump_m = 0.3;     ///< [m] frame-to-frame motion above this is a failure
+  double max_jump_deg = 30.0;  ///< [deg] likewise for rotation
+};
+
+/// The screen's memory per map point (see screening_history.hpp).
+struct HistoryConfig {
+  double forgetting = 0.8;      ///< weight of the past per screening (half-life ~3 screenings)
+  int cull_consecutive = 3;     ///< culled after this many rejections in a row
+  double cull_share = 0.75;     ///< or with this forgotten outlier share ...
+  int cull_min_screenings = 4;  ///< ... after at least this many screenings
+  /// points with a larger share (screened at least twice) are kept out of the rough pose
+  double rough_pose_max_share = 0.5;
+};
+
+struct MapConfig {
+  /// PnP RANSAC iterations of the map tracker's rough pose (the frame tracker's rough_pose group
+  /// gives every other setting): the matches come from a constant-velocity search, so a smaller
+  /// budget suffices, and when it fails the prediction is the rough pose (measured in
+  /// docs/benchmarks.md)
+  int rough_pose_iterations = 100;
+  ProjectionMatchConfig projection;
+  LocalMapConfig local_map;
+  KeyframeConfig keyframes;
+  RelocalisationConfig relocalisation;
+  HistoryConfig history;
+};
+
+}  // namespace hbos::slam

@@ -1,0 +1,449 @@
+#include "frontend/map/map_tracker.hpp"
+
+#include <hbos/screening/residual_field.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <utility>
+
+namespace hbos::slam {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+/// Time since the last lap [us].
+class Stopwatch {
+ public:
+  double lap() {
+    const Clock::time_point now = Clock::now();
+    const double us = std::chrono::duration<double, std::micro>(now - start_).count();
+    start_ = now;
+    return us;
+  }
+
+ private:
+  Clock::time_point start_ = Clock::now();
+};
+
+std::size_t at(int i) { return static_cast<std::size_t>(i); }
+
+// ORB-SLAM2's ComputeImageBounds: the undistorted image's extent from its corners.
+ImageBounds undistorted_bounds(const CameraModel& camera, int cols, int rows) {
+  const auto w = static_cast<float>(cols), h = static_cast<float>(rows);
+  const std::vector<cv::Point2f> corners =
+      undistort_pixels(camera, {{0.f, 0.f}, {w, 0.f}, {0.f, h}, {w, h}});
+  ImageBounds b;
+  b.min_x = std::min(corners[0].x, corners[2].x);
+  b.max_x = std::max(corners[1].x, corners[3].x);
+  b.min_y = std::min(corners[0].y, corners[1].y);
+  b.max_y = std::max(corners[2].y, corners[3].y);
+  return b;
+}
+
+Eigen::Isometry3d no_pose() {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.matrix().setConstant(std::numeric_limits<double>::quiet_NaN());
+  return T;
+}
+
+double angle_deg(const Eigen::Matrix3d& R) {
+  return Eigen::AngleAxisd(R).angle() * 180.0 / 3.14159265358979323846;
+}
+
+RoughPoseConfig map_rough_pose(const Config& config) {
+  RoughPoseConfig c = config.rough_pose;
+  c.ransac_iterations = config.map.rough_pose_iterations;
+  return c;
+}
+
+}  // namespace
+
+const char* to_string(TrackSource source) {
+  switch (source) {
+    case TrackSource::kInitialised:
+      return "initialised";
+    case TrackSource::kMotion:
+      return "motion";
+    case TrackSource::kKeyframe:
+      return "keyframe";
+    case TrackSource::kRelocalised:
+      return "relocalised";
+    case TrackSource::kLost:
+      return "lost";
+  }
+  return "?";
+}
+
+struct MapTracker::Matched {
+  std::vector<int> keypoint;  ///< current keypoint of match i
+  std::vector<int> point;     ///< map point of match i
+  std::vector<Eigen::Vector3d> points_world;
+  std::vector<Eigen::Vector2d> observed;
+  std::vector<double> sigma;
+  MatchEvidence evidence;
+};
+
+MapTracker::MapTracker(const Config& config, const CameraModel& camera)
+    : config_(config),
+      extractor_(config.extraction, camera),
+      rough_pose_(map_rough_pose(config), camera.pinhole()),
+      screen_(config.screen),
+      refiner_(config.refinement, camera.pinhole()),
+      matcher_(config.map.projection, camera.pinhole(), config.extraction.scale_factor,
+               config.extraction.levels),
+      relocaliser_(config.map.relocalisation, camera.pinhole()),
+      map_(config.extraction.scale_factor, config.extraction.levels),
+      camera_(camera) {}
+
+TrackResult MapTracker::track(const Frame& frame) {
+  TrackResult out;
+  out.stats.index = frame.index;
+  out.stats.stamp = frame.stamp;
+  out.stats.mask_us = frame.mask_us;
+  report_ = MapFrameReport{};
+  Stopwatch clock;
+  if (!bounds_) bounds_ = undistorted_bounds(camera_, frame.bgr.cols, frame.bgr.rows);
+
+  // 1. Mask: the frame source computed frame.mask (timed in mask_us); ORB avoids it.
+  // 2. ORB features outside the mask.
+  Features current = extractor_.extract(frame);
+  out.stats.features = static_cast<int>(current.size());
+  report_.extract_us = clock.lap();
+  if (state_ == State::kNotInitialised) return initialise(frame, std::move(current), out);
+  const KeypointGrid grid(current, *bounds_);
+  std::vector<int> point_of(current.size(), -1);  // current keypoint -> map point
+
+  // 3. Lightweight tracking: constant velocity + the last frame by projection; the reference
+  //    keyframe by descriptor when that fails; relocalisation against recent keyframes when lost.
+  Eigen::Isometry3d T_camera_world = lightweight_tracking(frame, current, grid, point_of);
+  report_.tracking_us = clock.lap();
+  if (report_.source == TrackSource::kLost) {
+    lose(out);
+    return out;
+  }
+  // 4. Rough pose: PnP RANSAC on those matches, without the points the screen distrusts.
+  T_camera_world = rough_pose(current, point_of, T_camera_world, out.stats);
+  report_.rough_us = clock.lap();
+
+  // 5. Local map: the keyframes sharing points with this frame and their neighbours; their
+  //    points matched by projection under the rough pose.
+  match_local_map(frame, current, grid, T_camera_world, point_of);
+  report_.local_map_us = clock.lap();
+
+  // 6. Reproject every match under the rough pose and screen the residuals (the rounds refine
+  //    the pose on the survivors), with each point's screening history as evidence.
+  const Matched m = gather(current, point_of, out);
+  out.screen =
+      screen_.screen(m.points_world, m.observed, m.sigma, T_camera_world, refiner_, m.evidence);
+  // 7. Optimise the pose on the survivors (Huber).
+  refine_on_survivors(m, out.screen, T_camera_world);
+  report_.screen_us = out.screen.screen_us;
+  report_.refine_us = out.screen.refine_us;
+  clock.lap();
+
+  // 8. Screening history: every screened point remembers the verdict; points screened out
+  //    again and again are culled.
+  update_history(m, out.screen, point_of);
+
+  // 9. Tracked or lost, the keyframe decision, and this frame as the next one's last frame.
+  finish(frame, std::move(current), point_of, T_camera_world, out);
+  report_.map_us = clock.lap();
+  return out;
+}
+
+TrackResult MapTracker::initialise(const Frame& frame, Features current, TrackResult out) {
+  int with_depth = 0;
+  for (const float d : current.depth_m) with_depth += d > 0.f ? 1 : 0;
+  if (with_depth < config_.map.keyframes.init_min_features) {
+    lose(out);  // not enough structure for a first keyframe: no pose yet
+    return out;
+  }
+  Stopwatch clock;
+  insert_keyframe(frame, std::move(current), {}, Eigen::Isometry3d::Identity());
+  state_ = State::kTracking;
+  report_.source = TrackSource::kInitialised;
+  out.stats.tracked = true;
+  out.T_world_camera = Eigen::Isometry3d::Identity();
+  report_.map_us = clock.lap();
+  report_.keyframes = map_.keyframes();
+  report_.live_points = map_.live_points();
+  return out;
+}
+
+Eigen::Isometry3d MapTracker::lightweight_tracking(const Frame& frame, const Features& current,
+                                                   const KeypointGrid& grid,
+                                                   std::vector<int>& point_of) {
+  const ProjectionMatchConfig& c = config_.map.projection;
+  const auto count = [&] {
+    return static_cast<int>(
+        std::count_if(point_of.begin(), point_of.end(), [](int p) { return p >= 0; }));
+  };
+  if (state_ == State::kLost) {
+    const Relocalisation r = relocaliser_.relocalise(map_, matcher_, current, point_of);
+    report_.source = r.found ? TrackSource::kRelocalised : TrackSource::kLost;
+    report_.last_frame_matches = count();
+    if (r.found) {
+      last_relocalisation_frame_ = frame.index;
+      reference_keyframe_ = r.keyframe;
+    }
+    return r.T_camera_world;
+  }
+  const Eigen::Isometry3d predicted =
+      velocity_ ? *velocity_ * last_T_camera_world_ : last_T_camera_world_;
+  for (const float scale : {1.f, 2.f}) {
+    std::fill(point_of.begin(), point_of.end(), -1);
+    matcher_.match_last_frame(map_, last_keypoints_, last_point_of_, predicted, current, grid,
+                              *bounds_, scale, point_of);
+    if (count() >= c.min_last_frame_matches) {
+      report_.source = TrackSource::kMotion;
+      report_.last_frame_matches = count();
+      return predicted;
+    }
+  }
+  std::fill(point_of.begin(), point_of.end(), -1);
+  if (reference_keyframe_ >= 0) {
+    matcher_.match_keyframe(map_, map_.keyframe(reference_keyframe_), current, 0.7f, point_of);
+  }
+  report_.last_frame_matches = count();
+  report_.source = count() >= c.min_reference_matches ? TrackSource::kKeyframe : TrackSource::kLost;
+  return last_T_camera_world_;
+}
+
+Eigen::Isometry3d MapTracker::rough_pose(const Features& current, const std::vector<int>& point_of,
+                                         const Eigen::Isometry3d& guess, FrameStats& stats) const {
+  std::vector<Eigen::Vector3d> points;
+  std::vector<Eigen::Vector2d> observed;
+  for (std::size_t k = 0; k < point_of.size(); ++k) {
+    if (point_of[k] < 0) continue;
+    const MapPoint& p = map_.point(point_of[k]);
+    if (p.history.distrusted(config_.map.history)) continue;  // never builds the rough pose
+    points.push_back(p.position_world);
+    observed.push_back(current.undistorted[k]);
+  }
+  const RoughPose rough = rough_pose_.estimate(points, observed, guess);
+  // A consensus far from the prediction is a wrong one (e.g. a person holding a third of the
+  // matches): no camera jumps that far in a frame, so the prediction stays the rough pose.
+  const Eigen::Isometry3d step = rough.T_cur_prev * guess.inverse();
+  const RelocalisationConfig& r = config_.map.relocalisation;
+  if (!rough.from_ransac || step.translation().norm() > r.max_jump_m ||
+      angle_deg(step.linear()) > r.max_jump_deg) {
+    return guess;
+  }
+  stats.rough_from_ransac = true;
+  stats.ransac_inliers = rough.ransac_inliers;
+  return rough.T_cur_prev;  // here: world -> current camera
+}
+
+void MapTracker::match_local_map(const Frame& frame, const Features& current,
+                                 const KeypointGrid& grid, const Eigen::Isometry3d& T_camera_world,
+                                 std::vector<int>& point_of) {
+  std::vector<int> matched;
+  for (const int p : point_of) {
+    if (p >= 0) matched.push_back(p);
+  }
+  int reference = -1;
+  const std::vector<int> keyframes =
+      map_.local_keyframes(matched, config_.map.local_map, reference);
+  if (reference >= 0) reference_keyframe_ = reference;
+  std::vector<std::uint8_t> taken(static_cast<std::size_t>(map_.points_created()), 0);
+  for (const int p : matched) taken[at(p)] = 1;
+  std::vector<int> candidates;
+  for (const int p : map_.local_points(keyframes)) {
+    if (taken[at(p)] == 0) candidates.push_back(p);
+  }
+  // A wider search right after relocalisation, whose pose is coarser (ORB-SLAM2: th 5).
+  const bool relocalised = frame.index < last_relocalisation_frame_ + 2;
+  const ProjectionMatchConfig& c = config_.map.projection;
+  report_.local_map_matches =
+      matcher_.match_local_map(map_, candidates, T_camera_world, current, grid, *bounds_,
+                               relocalised ? c.relocalised_radius_px : c.local_map_radius_px,
+                               config_.map.local_map.viewing_cos_limit, point_of);
+}
+
+MapTracker::Matched MapTracker::gather(const Features& current, const std::vector<int>& point_of,
+                                       TrackResult& out) const {
+  Matched m;
+  for (std::size_t k = 0; k < point_of.size(); ++k) {
+    const int id = point_of[k];
+    if (id < 0) continue;
+    const MapPoint& p = map_.point(id);
+    m.keypoint.push_back(static_cast<int>(k));
+    m.point.push_back(id);
+    m.points_world.push_back(p.position_world);
+    m.observed.push_back(current.undistorted[k]);
+    // ORB-SLAM's noise model: a keypoint at octave o is 1.2^o times less precise.
+    m.sigma.push_back(
+        hbos::sigma_from_octave(current.keypoints[k].octave, config_.extraction.scale_factor));
+    m.evidence.depth_m.push_back(static_cast<double>(current.depth_m[k]));
+    m.evidence.outlier_history.push_back(p.history.outlier_share());
+    const cv::Point2f& now = current.keypoints[k].pt;
+    const auto before = last_pixel_of_point_.find(id);
+    const cv::Point2f then = before != last_pixel_of_point_.end() ? before->second : now;
+    out.matches.push_back(
+        {{now.x, now.y}, {then.x, then.y}, current.on_person[k] != 0 || p.on_person, false});
+  }
+  out.stats.matches = static_cast<int>(m.point.size());
+  return m;
+}
+
+void MapTracker::refine_on_survivors(const Matched& m, ScreenOutcome& screen,
+                                     Eigen::Isometry3d& T) const {
+  const auto survivors = std::count(screen.inlier.begin(), screen.inlier.end(), std::uint8_t{1});
+  if (survivors < config_.screen.min_inliers) return;
+  const auto start = Clock::now();
+  refiner_.refine(m.points_world, m.observed, m.sigma, screen.inlier, T);
+  screen.refine_us += std::chrono::duration<double, std::micro>(Clock::now() - start).count();
+}
+
+void MapTracker::update_history(const Matched& m, const ScreenOutcome& screen,
+                                std::vector<int>& point_of) {
+  const HistoryConfig& c = config_.map.history;
+  for (std::size_t i = 0; i < m.point.size(); ++i) {
+    const bool rejected = i >= screen.inlier.size() || screen.inlier[i] == 0;
+    MapPoint& p = map_.point(m.point[i]);
+    p.history.record(rejected, c.forgetting);
+    if (p.history.should_cull(c)) {
+      map_.cull(p.id);
+      ++report_.culled_now;
+    }
+    // Outliers leave the frame (as ORB-SLAM2 drops them after PoseOptimization): they neither
+    // carry over to the next frame nor become observations of a new keyframe.
+    if (rejected) point_of[at(m.keypoint[i])] = -1;
+  }
+}
+
+void MapTracker::finish(const Frame& frame, Features current, const std::vector<int>& point_of,
+                        const Eigen::Isometry3d& T_camera_world, TrackResult& out) {
+  const RelocalisationConfig& r = config_.map.relocalisation;
+  const KeyframeConfig& kc = config_.map.keyframes;
+  int survivors = 0, tracked_close = 0, untracked_close = 0;
+  for (std::size_t k = 0; k < point_of.size(); ++k) {
+    const float d = current.depth_m[k];
+    const bool close = d > 0.f && d < kc.close_depth_m;
+    if (point_of[k] >= 0) {
+      ++survivors;
+      tracked_close += close ? 1 : 0;
+    } else {
+      untracked_close += close ? 1 : 0;
+    }
+  }
+  const bool after_relocalisation = frame.index < last_relocalisation_frame_ + kc.max_frames;
+  bool ok = survivors >= (after_relocalisation ? r.min_inliers_relocalised : r.min_inliers);
+  // A jump: frame-to-frame motion no camera makes in 1/30 s means a wrong pose, not motion.
+  const Eigen::Isometry3d step = T_camera_world * last_T_camera_world_.inverse();
+  if (report_.source != TrackSource::kRelocalised &&
+      (step.translation().norm() > r.max_jump_m || angle_deg(step.linear()) > r.max_jump_deg)) {
+    ok = false;
+  }
+  if (!ok) {
+    count_statistics(out);
+    lose(out);
+    return;
+  }
+  velocity_.reset();
+  if (state_ == State::kTracking) velocity_ = step;
+  state_ = State::kTracking;
+  out.stats.tracked = true;
+  out.T_world_camera = T_camera_world.inverse();
+  count_statistics(out);
+
+  // The keyframe decision (keyframe_policy.hpp).
+  KeyframeEvidence e;
+  e.frames_since_keyframe = frame.index - last_keyframe_frame_;
+  e.frames_since_relocalisation = frame.index - last_relocalisation_frame_;
+  e.keyframes_in_map = map_.keyframes();
+  e.tracked = survivors;
+  e.tracked_close = tracked_close;
+  e.untracked_close = untracked_close;
+  if (reference_keyframe_ >= 0) {
+    const int min_views = reference_min_observations(map_.keyframes());
+    for (const int p : map_.keyframe(reference_keyframe_).point_of) {
+      if (p >= 0 && map_.alive(p) &&
+          static_cast<int>(map_.point(p).observations.size()) >= min_views) {
+        ++e.reference_tracked;
+      }
+    }
+  }
+  last_keypoints_ = current.keypoints;
+  last_point_of_ = point_of;
+  last_pixel_of_point_.clear();
+  for (std::size_t k = 0; k < point_of.size(); ++k) {
+    if (point_of[k] >= 0) last_pixel_of_point_[point_of[k]] = current.keypoints[k].pt;
+  }
+  last_T_camera_world_ = T_camera_world;
+  if (need_keyframe(e, kc)) insert_keyframe(frame, std::move(current), point_of, T_camera_world);
+  report_.keyframes = map_.keyframes();
+  report_.live_points = map_.live_points();
+  report_.culled_points = map_.culled_points();
+}
+
+void MapTracker::lose(TrackResult& out) {
+  if (state_ == State::kTracking) state_ = State::kLost;
+  velocity_.reset();
+  report_.source = TrackSource::kLost;
+  out.stats.tracked = false;
+  out.T_world_camera = no_pose();
+  report_.keyframes = map_.keyframes();
+  report_.live_points = map_.live_points();
+  report_.culled_points = map_.culled_points();
+}
+
+void MapTracker::insert_keyframe(const Frame& frame, Features current,
+                                 const std::vector<int>& point_of,
+                                 const Eigen::Isometry3d& T_camera_world) {
+  const KeyframeConfig& kc = config_.map.keyframes;
+  // New points (Tracking::CreateNewKeyFrame, RGB-D): keypoints with depth and no map point,
+  // nearest first; all closer than close_depth_m, and at least min_new_points.
+  std::vector<int> fresh;
+  for (std::size_t k = 0; k < current.size(); ++k) {
+    const bool has_point = k < point_of.size() && point_of[k] >= 0;
+    if (!has_point && current.depth_m[k] > 0.f) fresh.push_back(static_cast<int>(k));
+  }
+  std::sort(fresh.begin(), fresh.end(),
+            [&](int a, int b) { return current.depth_m[at(a)] < current.depth_m[at(b)]; });
+  std::size_t n = 0;
+  while (n < fresh.size() && (current.depth_m[at(fresh[n])] < kc.close_depth_m ||
+                              static_cast<int>(n) < kc.min_new_points)) {
+    ++n;
+  }
+  fresh.resize(n);
+
+  KeyFrame keyframe;
+  keyframe.frame_index = frame.index;
+  keyframe.T_camera_world = T_camera_world;
+  keyframe.point_of = point_of;
+  keyframe.point_of.resize(current.size(), -1);
+  keyframe.features = std::move(current);
+  reference_keyframe_ = map_.add_keyframe(std::move(keyframe), fresh, refiner_.camera());
+  last_keyframe_frame_ = frame.index;
+  report_.keyframe_inserted = true;
+  // The new points join the last frame, so the next frame can track them by projection.
+  const KeyFrame& added = map_.keyframe(reference_keyframe_);
+  last_point_of_ = added.point_of;
+  for (std::size_t k = 0; k < added.point_of.size(); ++k) {
+    if (added.point_of[k] >= 0)
+      last_pixel_of_point_[added.point_of[k]] = added.features.keypoints[k].pt;
+  }
+  if (last_keypoints_.empty()) last_keypoints_ = added.features.keypoints;
+}
+
+void MapTracker::count_statistics(TrackResult& out) const {
+  FrameStats& stats = out.stats;
+  stats.threshold = out.screen.threshold;
+  stats.screen_us = out.screen.screen_us;
+  stats.refine_us = out.screen.refine_us;
+  for (std::size_t i = 0; i < out.matches.size(); ++i) {
+    MatchRecord& m = out.matches[i];
+    m.kept = i < out.screen.inlier.size() && out.screen.inlier[i] != 0;
+    stats.person_matches += m.on_person ? 1 : 0;
+    stats.survivors += m.kept ? 1 : 0;
+    stats.person_survivors += (m.on_person && m.kept) ? 1 : 0;
+    stats.static_dropped += (!m.on_person && !m.kept) ? 1 : 0;
+  }
+}
+
+}  // namespace hbos::slam
