@@ -1,0 +1,141 @@
+// The C++ half of the Python module `hbos` (examples/python/hbos/__init__.py holds the PyOD-style
+// HBOS class): the default model and the PyOD mode, fitted and scored on numpy float64 arrays
+// read in place (any strides, C or Fortran order: an Eigen::Map over numpy's buffer, no copy),
+// with the GIL released while the library runs, and their model files.
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <hbos/model.hpp>
+#include <hbos/model_file.hpp>
+#include <hbos/pyod/model.hpp>
+#include <hbos/pyod/model_file.hpp>
+
+#include <stdexcept>
+#include <string>
+
+namespace py = pybind11;
+
+namespace {
+
+using Strided = Eigen::Map<const Eigen::MatrixXd, 0, Eigen::Stride<Eigen::Dynamic, Eigen::Dynamic>>;
+/// A float64 array; forcecast converts other dtypes (a copy, as numpy.asarray would).
+using Array = py::array_t<double, py::array::forcecast>;
+
+/// The 2-D array as an Eigen map over its own buffer (a 1-D array is one column). Negative or
+/// unaligned strides are refused here; the Python layer copies such arrays first.
+Strided as_matrix(const Array& x) {
+  if (x.ndim() != 1 && x.ndim() != 2)
+    throw std::invalid_argument("X must be a 1-D or 2-D array, got " + std::to_string(x.ndim()) +
+                                " dimensions");
+  const Eigen::Index rows = x.shape(0);
+  const Eigen::Index cols = x.ndim() == 2 ? x.shape(1) : 1;
+  const Eigen::Index row_stride = x.strides(0);
+  const Eigen::Index col_stride = x.ndim() == 2 ? x.strides(1) : row_stride * rows;
+  constexpr Eigen::Index size = sizeof(double);
+  if (row_stride <= 0 || col_stride <= 0 || row_stride % size != 0 || col_stride % size != 0)
+    throw std::invalid_argument("X has negative or unaligned strides; pass a contiguous copy");
+  return Strided(
+      x.data(), rows, cols,
+      Eigen::Stride<Eigen::Dynamic, Eigen::Dynamic>(col_stride / size, row_stride / size));
+}
+
+py::array_t<double> to_numpy(const Eigen::VectorXd& v) {
+  py::array_t<double> out(v.size());
+  std::copy(v.data(), v.data() + v.size(), out.mutable_data());
+  return out;
+}
+
+/// The default model: `bins` coarse equal-width bins (or a rule name) x `shifts`.
+struct DefaultModel {
+  hbos::Hbosd model;
+  Eigen::VectorXd training_scores;
+};
+
+DefaultModel fit_default(const Array& x, const std::string& bins, Eigen::Index shifts) {
+  hbos::HbosParams params;
+  params.feature.binning.shifts = shifts;
+  if (bins == "auto") {
+    params.feature.binning.rule = hbos::BinCountRule::BirgeRozenblac;
+  } else if (!bins.empty()) {
+    params.feature.binning.bins = std::stol(bins);
+  }
+  const Strided m = as_matrix(x);
+  Eigen::VectorXd scores(m.rows());
+  py::gil_scoped_release release;
+  auto model = hbos::Hbosd::fit_and_score(m, scores, params);
+  return DefaultModel{std::move(model), std::move(scores)};
+}
+
+}  // namespace
+
+PYBIND11_MODULE(_hbos, m) {
+  m.doc() = "C++ core of the hbos Python module (use hbos.HBOS)";
+  py::register_exception<hbos::InvalidArgument>(m, "InvalidArgument", PyExc_ValueError);
+
+  py::class_<DefaultModel>(m, "DefaultModel")
+      .def_static("fit", &fit_default, py::arg("X"), py::arg("bins"), py::arg("shifts"))
+      .def("decision_function",
+           [](const DefaultModel& self, const Array& x) {
+             const Strided mx = as_matrix(x);
+             Eigen::VectorXd scores(mx.rows());
+             {
+               py::gil_scoped_release release;
+               self.model.score_into(mx, scores);
+             }
+             return to_numpy(scores);
+           })
+      .def_property_readonly(
+          "training_scores",
+          [](const DefaultModel& self) { return to_numpy(self.training_scores); })
+      .def_property_readonly("n_features",
+                             [](const DefaultModel& s) { return s.model.n_features(); })
+      .def("save", [](const DefaultModel& self,
+                      const std::string& path) { hbos::save_model(self.model, path); })
+      .def_static("load", [](const std::string& path) {
+        return DefaultModel{hbos::load_hbos<double>(path), Eigen::VectorXd()};
+      });
+
+  py::class_<hbos::PyodHbosd>(m, "PyodModel")
+      .def_static(
+          "fit",
+          [](const Array& x, Eigen::Index n_bins, bool auto_bins, double alpha, double tol,
+             double contamination) {
+            hbos::PyodParams p;
+            p.n_bins = n_bins;
+            p.auto_bins = auto_bins;
+            p.alpha = alpha;
+            p.tol = tol;
+            p.contamination = contamination;
+            const Strided mx = as_matrix(x);
+            py::gil_scoped_release release;
+            return hbos::PyodHbosd::fit(mx, p);
+          },
+          py::arg("X"), py::arg("n_bins"), py::arg("auto_bins"), py::arg("alpha"), py::arg("tol"),
+          py::arg("contamination"))
+      .def("decision_function",
+           [](const hbos::PyodHbosd& self, const Array& x) {
+             const Strided mx = as_matrix(x);
+             Eigen::VectorXd scores;
+             {
+               py::gil_scoped_release release;
+               scores = self.decision_function(mx);
+             }
+             return to_numpy(scores);
+           })
+      .def_property_readonly("decision_scores",
+                             [](const hbos::PyodHbosd& s) { return to_numpy(s.decision_scores()); })
+      .def_property_readonly("threshold", &hbos::PyodHbosd::threshold)
+      .def_property_readonly("n_features", &hbos::PyodHbosd::n_features)
+      .def("bin_edges",
+           [](const hbos::PyodHbosd& s, Eigen::Index j) { return to_numpy(s.bin_edges(j)); })
+      .def("densities",
+           [](const hbos::PyodHbosd& s, Eigen::Index j) { return to_numpy(s.densities(j)); })
+      .def("save", [](const hbos::PyodHbosd& self,
+                      const std::string& path) { hbos::save_model(self, path); })
+      .def_static("load",
+                  [](const std::string& path) { return hbos::load_pyod_hbos<double>(path); });
+
+  m.def("model_kind", [](const std::string& path) { return hbos::read_model_info(path).kind; });
+}
