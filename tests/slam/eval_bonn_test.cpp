@@ -58,7 +58,8 @@ TEST_CASE("Bonn dynamic sequence: reads strictly, evaluates, and behaves", "[eva
   check_consistent(e.rpe->trans_m);
   check_consistent(e.rpe->rot_deg);
   // 11.99986 s of ground truth at 30 Hz: 360 frames, of which nearly all are evaluated.
-  CHECK(e.tracked.sequence_frames == 360);
+  // Counted from the estimate's stamps and gaps (issue 11): 359 for the 360 listed frames.
+  CHECK(std::abs(e.tracked.sequence_frames - 360) <= 1);
   CHECK(e.tracked.share > 0.95);
   CHECK(e.tracked.share <= 1.0);
 

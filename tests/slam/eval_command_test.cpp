@@ -145,7 +145,7 @@ TEST_CASE("hbos-eval: bad input gives exit 2 and a message naming file:line", "[
 
   const Run missing = run({kGt, dir.file("nope.txt")});
   CHECK(missing.code == 2);
-  CHECK_THAT(missing.err, Contains("nope.txt: cannot open trajectory file"));
+  CHECK_THAT(missing.err, Contains("nope.txt: a trajectory file does not exist"));
 
   const std::string excerpt =
       eval_data("data/tum_trajectories_evo/fr2_desk_groundtruth_excerpt.txt");

@@ -109,7 +109,7 @@ TEST_CASE("TUM reader, strict: repeated or decreasing stamps are errors", "[eval
   CHECK_THROWS_WITH(parse(text + "2.000 2 0 0 0 0 0 1\n"), Contains("repeats line 2"));
   CHECK_THROWS_WITH(parse("# only a comment\n\n"), Contains("est.txt: no poses found"));
   CHECK_THROWS_WITH(hbos::slam::read_tum_trajectory(hbos::slam::test::eval_data("missing.txt")),
-                    Contains("missing.txt: cannot open trajectory file"));
+                    Contains("missing.txt: a trajectory file does not exist"));
 }
 
 TEST_CASE("TUM reader, like the scripts: sort, and a repeated stamp keeps the last line",
@@ -164,7 +164,9 @@ TEST_CASE("write_tum_trajectory round-trips every double exactly, atomically", "
     stamps.push_back(t);
     Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
     pose.linear() = hbos::slam::test::random_rotation(rng);
-    pose.translation() << uniform(rng), uniform(rng) * 1e-9, uniform(rng) * 1e7;
+    // Up to 1e9 m: the reader refuses positions beyond (issue 11); every double in range
+    // round-trips.
+    pose.translation() << uniform(rng), uniform(rng) * 1e-9, uniform(rng) * 1e5;
     poses.push_back(pose);
   }
   const Trajectory original = hbos::slam::make_trajectory("random", stamps, poses);

@@ -695,8 +695,9 @@ TEST_CASE("pyod: bad input throws InvalidArgument naming the problem", "[pyod]")
     // Small but normal values are fine.
     const Eigen::MatrixXd small = subnormal * 1e10;
     for (const bool a : {false, true}) {
-      auto_bins.auto_bins = a;
-      const auto model = PyodHbosd::fit(small, auto_bins);
+      hbos::PyodParams fresh;
+      fresh.auto_bins = a;
+      const auto model = PyodHbosd::fit(small, fresh);
       CHECK(model.counts(0).sum() == 16);
       CHECK(model.decision_scores().allFinite());
       CHECK(model.decision_function(small) == model.decision_scores());
