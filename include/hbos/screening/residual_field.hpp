@@ -98,7 +98,7 @@ void collect_field_samples(const Matches<Scalar>& matches, const Use& use,
 }
 
 /// The most cells balance_by_cell uses (64 a side), so a workspace can reserve them.
-inline constexpr std::size_t kMaxBalanceCells = 64 * 64;
+inline constexpr std::size_t kMaxBalanceCells = std::size_t{64} * 64;
 
 /// Caps the weight of crowded image cells: with the samples binned into square cells of
 /// `cell_px` over their predicted pixels, a cell holding more than the average occupied cell's
