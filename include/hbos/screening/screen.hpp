@@ -344,6 +344,12 @@ void ReprojectionScreen<Scalar>::centred_magnitudes(const Matches<Scalar>& match
       m /= matches.sigma(i);
       d /= matches.sigma(i);
     }
+    if (!std::isfinite(m) || !d.allFinite()) {
+      // A residual that overflows (or a field fitted to such residuals) has no direction and
+      // the largest magnitude: it can only be rejected, and it must not poison its neighbours.
+      m = std::numeric_limits<Scalar>::max();
+      d.setZero();
+    }
     if (clip > Scalar(0)) m = std::min(m, clip);
     r.magnitude_[k] = m;
     dx_[k] = d.x();
@@ -607,7 +613,15 @@ void ReprojectionScreen<Scalar>::run_gated(const Matches<Scalar>& matches, const
     Scalar e = 0;
     for (Index j = 0; j < kFeatures; ++j)
       e += r.contribution_[static_cast<std::size_t>(j) * un + k];
-    const Scalar g = t * r.magnitude_[k] / gate_;
+    // score > t exactly when the magnitude is beyond the gate, whatever t and G (even inf).
+    const Scalar m = r.magnitude_[k];
+    const Scalar above = std::nextafter(t, std::numeric_limits<Scalar>::infinity());
+    Scalar g = t * (m / gate_);
+    if (m > gate_) {
+      g = std::isnan(g) ? above : std::max(g, above);
+    } else if (std::isnan(g)) {
+      g = t;
+    }
     r.score_[k] = std::max(g, e);
     if (g <= t && e > t) ++by_evidence;
   }
