@@ -22,7 +22,9 @@ std::string reason() { return std::generic_category().message(errno); }
 
 /// Writes all of `content` and closes `file`; false (with errno set) on any failure.
 bool write_and_close(std::FILE* file, std::string_view content) {
-  const bool written = std::fwrite(content.data(), 1, content.size(), file) == content.size();
+  // fwrite's buffer is declared non-null even for a size of 0; an empty view may hold nullptr.
+  const bool written =
+      content.empty() || std::fwrite(content.data(), 1, content.size(), file) == content.size();
   const bool flushed = std::fflush(file) == 0;
   const int saved = errno;
   const bool closed = std::fclose(file) == 0;
@@ -236,7 +238,8 @@ AtomicFile::~AtomicFile() {
 void AtomicFile::write(std::string_view content) {
   State& s = *state_;
   if (s.file == nullptr || s.committed) throw WriteError(s.path + ": write after commit or error");
-  if (std::fwrite(content.data(), 1, content.size(), s.file) != content.size()) {
+  if (!content.empty() &&
+      std::fwrite(content.data(), 1, content.size(), s.file) != content.size()) {
     const std::string why = reason();
     const std::string name = s.written_name();
     s.abandon();

@@ -62,8 +62,10 @@ void validate_parts(const HistogramParts<Scalar>& p, const std::string& where) {
           ": scale must be finite and > 0 and base finite, got ", p.scale, " and ", p.base);
   for (std::size_t i = 0; i < p.edges.size(); ++i) {
     require(std::isfinite(p.edges[i]), where, ": edges[", i, "] is not finite (", p.edges[i], ")");
-    require(i == 0 || p.edges[i - 1] <= p.edges[i], where, ": edges are not ascending: edges[",
-            i - 1, "] = ", p.edges[i - 1], " > edges[", i, "] = ", p.edges[i]);
+    // (the message's arguments are evaluated eagerly: edges[i - 1] only exists from i = 1)
+    if (i > 0)
+      require(p.edges[i - 1] <= p.edges[i], where, ": edges are not ascending: edges[", i - 1,
+              "] = ", p.edges[i - 1], " > edges[", i, "] = ", p.edges[i]);
   }
   require(p.edges.front() == p.lo && p.edges.back() == p.hi, where, ": edges run from ",
           p.edges.front(), " to ", p.edges.back(), " but the range is [", p.lo, ", ", p.hi, "]");

@@ -281,7 +281,8 @@ inline void write_file_atomically(const std::string& path, std::string_view cont
   }
   require(file != nullptr, "cannot create a temporary file next to model file '", path,
           "': ", std::strerror(errno));
-  const bool written = std::fwrite(content.data(), 1, content.size(), file) == content.size();
+  const bool written =
+      content.empty() || std::fwrite(content.data(), 1, content.size(), file) == content.size();
   const int write_errno = errno;
   const bool closed = std::fclose(file) == 0;
   if (!written || !closed) {
