@@ -8,9 +8,11 @@
 #include <hbos/screening.hpp>
 
 #include <cmath>
+#include <limits>
 #include <random>
 #include <set>
 #include <string>
+#include <vector>
 
 namespace {
 
@@ -233,4 +235,54 @@ TEST_CASE("the v2 settings are validated", "[screen_v2][errors]") {
   CHECK_THROWS_WITH(m.set_depth(0, -1.0), Catch::Contains("depth must be finite and > 0"));
   CHECK_THROWS_WITH(m.set_outlier_history(0, 1.5), Catch::Contains("[0, 1]"));
   CHECK_THROWS_WITH(m.set_mask_distance(0, std::nan("")), Catch::Contains("mask distance"));
+}
+
+TEMPLATE_TEST_CASE("fuzz finding: extreme matches never get a NaN score, whatever the strategy",
+                   "[screen_v2][hardening]", float, double) {
+  using Scalar = TestType;
+  using V2 = Eigen::Matrix<Scalar, 2, 1>;
+  using Limits = std::numeric_limits<Scalar>;
+  // The finding: sigma = DBL_MAX on a stereo match whose right residual overflowed made
+  // e^2 / sigma^2 = inf / inf in the gates. Such a sigma is now refused when it is added.
+  hbos::Matches<Scalar> refused;
+  CHECK_THROWS_WITH(refused.add(V2(1, 1), V2(2, 2), Limits::max()),
+                    Catch::Contains("sigma") && Catch::Contains("out of range"));
+  CHECK_THROWS_WITH(refused.add(V2(1, 1), V2(2, 2), Limits::min()),
+                    Catch::Contains("out of range"));
+  CHECK(refused.size() == 0);
+
+  // Legal extremes: the smallest and largest legal sigma, residuals and right coordinates
+  // that overflow, among a static background.
+  const Scalar tiny = std::sqrt(Limits::min());
+  const Scalar huge = Scalar(1) / tiny;
+  hbos::Matches<Scalar> m;
+  for (int i = 0; i < 30; ++i) {
+    const V2 p(Scalar(20 * i), Scalar(15 * i));
+    m.add(p, p + V2(Scalar(0.3), Scalar(-0.2)));
+  }
+  m.add(V2(5, 5), V2(6, 5), tiny);
+  m.add(V2(5, 5), V2(6, 5), huge);
+  m.add(V2(Limits::max(), 5), V2(-Limits::max(), 5), huge);
+  m.add_stereo(V2(7, 7), V2(8, 7), Limits::max(), -Limits::max(), huge);
+  m.add_stereo(V2(9, 9), V2(9, 9), -Limits::max(), Limits::max(), tiny);
+  m.add(V2(Limits::lowest(), Limits::max()), V2(Limits::max(), Limits::lowest()), tiny);
+
+  std::vector<hbos::ScreenStrategy> strategies;
+  for (const auto& named : hbos::named_strategies()) strategies.push_back(named.make());
+  strategies.emplace_back(hbos::QuantileGate{0.8, true});
+  strategies.emplace_back(hbos::MadGate{3.0, false});
+  for (const auto& strategy : strategies) {
+    hbos::ScreenConfig config;
+    config.strategy = strategy;
+    hbos::ReprojectionScreen<Scalar> screen(config);
+    const auto& r = screen.screen(m);
+    INFO("strategy " << hbos::strategy_name(strategy));
+    REQUIRE(r.size() == m.size());
+    for (Eigen::Index i = 0; i < r.size(); ++i) {
+      INFO("match " << i);
+      CHECK_FALSE(std::isnan(r.score(i)));
+    }
+    // The overflowing matches are rejected by every strategy.
+    for (Eigen::Index i = m.size() - 4; i < m.size(); ++i) CHECK_FALSE(r.inlier(i));
+  }
 }

@@ -196,6 +196,13 @@ class Matches {
                     observed.x(), ", ", observed.y(), ")");
     detail::require(std::isfinite(sigma) && sigma > Scalar(0), "match ", i,
                     ": sigma must be finite and > 0, got ", sigma);
+    // Screens use both sigma^2 and the information 1/sigma^2; a sigma whose square over- or
+    // underflows would turn them into inf * 0 = NaN.
+    const Scalar s2 = sigma * sigma;
+    detail::require(std::isnormal(s2) && std::isnormal(Scalar(1) / s2), "match ", i, ": sigma ",
+                    sigma, " is out of range: sigma^2 and 1/sigma^2 must be finite ",
+                    "and normal, so sigma lies in [", std::sqrt(std::numeric_limits<Scalar>::min()),
+                    ", ", Scalar(1) / std::sqrt(std::numeric_limits<Scalar>::min()), "]");
     predicted_x_.push_back(predicted.x());
     predicted_y_.push_back(predicted.y());
     observed_x_.push_back(observed.x());

@@ -17,6 +17,8 @@
 #include <limits>
 #include <vector>
 
+#include "hbos/screening/pixel_grid.hpp"
+
 namespace hbos::detail {
 
 /// The most cells a coherence grid has (so a workspace can reserve them): image cells grow and
@@ -59,29 +61,25 @@ void coherence_evidence(const Scalar* u, const Scalar* v, const Scalar* depth, s
       l1 = std::max(l1, layer);
     }
   }
-  // The grid is bounded whatever the input: at most 128 cells a side and 64 depth layers (a
-  // coarser cell is used for a larger image; far depths share the last layer).
-  constexpr double kMaxSide = 128.0;  // 128 x 128 = kMaxCoherenceCells
-  const double cell = std::max({cell_px, static_cast<double>(u1 - u0) / (kMaxSide - 1.0),
-                                static_cast<double>(v1 - v0) / (kMaxSide - 1.0), 1e-9});
-  const auto nx = static_cast<std::size_t>(static_cast<double>(u1 - u0) / cell) + 1;
-  const auto ny = static_cast<std::size_t>(static_cast<double>(v1 - v0) / cell) + 1;
+  // At most 128 x 128 cells (kMaxCoherenceCells; a coarser cell for a larger image) and 64 depth
+  // layers (far depths share the last layer).
+  const PixelGrid grid(static_cast<double>(u0), static_cast<double>(u1), static_cast<double>(v0),
+                       static_cast<double>(v1), cell_px, 128.0);
+  const std::size_t nx = grid.nx(), ny = grid.ny();
   const std::size_t layers = all_depth ? static_cast<std::size_t>(l1 - l0) + 1 : 1;
   const std::size_t max_layers = std::max<std::size_t>(1, kMaxCoherenceCells / (nx * ny));
   const std::size_t merge = (layers + max_layers - 1) / max_layers;  // layers per grid layer
   const std::size_t nl = (layers + merge - 1) / merge;
   const std::size_t cells = nx * ny * nl;
-  const auto inv_cell = static_cast<Scalar>(1.0 / cell);
   work.cell.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
-    const auto cx = std::min(static_cast<std::size_t>((u[i] - u0) * inv_cell), nx - 1);
-    const auto cy = std::min(static_cast<std::size_t>((v[i] - v0) * inv_cell), ny - 1);
+    const std::size_t in_plane = grid.cell(static_cast<double>(u[i]), static_cast<double>(v[i]));
     std::size_t cl = 0;
     if (nl > 1) {
       const Scalar layer = std::floor(std::log(depth[i]) * inv_log_ratio) - l0;
       cl = std::min(static_cast<std::size_t>(layer) / merge, nl - 1);
     }
-    work.cell[i] = static_cast<std::uint32_t>((cl * ny + cy) * nx + cx);
+    work.cell[i] = static_cast<std::uint32_t>(cl * nx * ny + in_plane);
   }
   for (auto* a : {&work.sx, &work.sy, &work.count}) a->assign(cells, Scalar(0));
   for (std::size_t i = 0; i < n; ++i) {

@@ -23,6 +23,7 @@
 
 #include "hbos/error.hpp"
 #include "hbos/screening/matches.hpp"
+#include "hbos/screening/pixel_grid.hpp"
 
 namespace hbos {
 
@@ -111,20 +112,14 @@ void balance_by_cell(FieldSamples<Scalar>& samples, double cell_px,
   if (m == 0 || !(cell_px > 0.0)) return;
   const auto [u_lo, u_hi] = std::minmax_element(samples.u.begin(), samples.u.end());
   const auto [v_lo, v_hi] = std::minmax_element(samples.v.begin(), samples.v.end());
-  constexpr double kMaxSide = 64.0;  // bounds the grid whatever the input
-  const double cell = std::max({cell_px, static_cast<double>(*u_hi - *u_lo) / (kMaxSide - 1.0),
-                                static_cast<double>(*v_hi - *v_lo) / (kMaxSide - 1.0)});
-  const auto nx = static_cast<std::size_t>(static_cast<double>(*u_hi - *u_lo) / cell) + 1;
-  const auto ny = static_cast<std::size_t>(static_cast<double>(*v_hi - *v_lo) / cell) + 1;
-  counts.assign(nx * ny, 0);
+  // At most 64 x 64 cells (kMaxBalanceCells; larger cells for a larger spread).
+  const PixelGrid grid(static_cast<double>(*u_lo), static_cast<double>(*u_hi),
+                       static_cast<double>(*v_lo), static_cast<double>(*v_hi), cell_px, 64.0);
+  counts.assign(grid.nx() * grid.ny(), 0);
   cell_of.resize(m);
-  const Scalar u0 = *u_lo, v0 = *v_lo;
   for (std::size_t i = 0; i < m; ++i) {
-    const auto cx =
-        std::min(static_cast<std::size_t>(static_cast<double>(samples.u[i] - u0) / cell), nx - 1);
-    const auto cy =
-        std::min(static_cast<std::size_t>(static_cast<double>(samples.v[i] - v0) / cell), ny - 1);
-    cell_of[i] = static_cast<std::uint32_t>(cy * nx + cx);
+    cell_of[i] = static_cast<std::uint32_t>(
+        grid.cell(static_cast<double>(samples.u[i]), static_cast<double>(samples.v[i])));
     ++counts[cell_of[i]];
   }
   std::size_t occupied = 0;

@@ -235,6 +235,12 @@ class ReprojectionScreen {
       if (use(i)) fit_values_[static_cast<std::size_t>(m++)] = values[static_cast<std::size_t>(i)];
     return Column(fit_values_.data(), m);
   }
+  /// The finite values of the fit set.
+  Column finite_fit_column(const Matches<Scalar>& matches, const std::vector<Scalar>& values) {
+    return select(matches, values, [&](Index i) {
+      return in_fit(matches, i) && std::isfinite(values[static_cast<std::size_t>(i)]);
+    });
+  }
   /// The values of the fit set.
   Column fit_column(const Matches<Scalar>& matches, const std::vector<Scalar>& values) {
     return select(matches, values, [&](Index i) { return in_fit(matches, i); });
@@ -664,7 +670,8 @@ void ReprojectionScreen<Scalar>::run_gate(const Matches<Scalar>& matches) {
     if (chi != nullptr) {
       // One threshold for mixed frames: a stereo match's chi^2 is rescaled to the 2-dof gate.
       score = e2 / s2;
-      if (matches.has_right(i)) score *= static_cast<Scalar>(chi->chi2_mono / chi->chi2_stereo);
+      if (matches.has_right(i) && std::isfinite(score))  // inf stays inf (never inf * 0)
+        score *= static_cast<Scalar>(chi->chi2_mono / chi->chi2_stereo);
     }
     r.score_[k] = score;
     r.contribution_[k] = score;
@@ -675,15 +682,20 @@ void ReprojectionScreen<Scalar>::run_gate(const Matches<Scalar>& matches) {
   } else if (chi != nullptr) {
     r.threshold_ = static_cast<Scalar>(chi->chi2_mono);
   } else if (const auto* q = std::get_if<QuantileGate>(&strategy)) {
-    const auto column = fit_column(matches, r.score_);
+    // Overflowed residuals (inf; never kept, see finish) are no measurement of the frame's
+    // spread: the quantile and the MAD are taken over the finite ones.
+    const auto column = finite_fit_column(matches, r.score_);
     scratch_.resize(static_cast<std::size_t>(column.size()));
     std::copy(column.data(), column.data() + column.size(), scratch_.begin());
-    r.threshold_ = detail::numpy_percentile_linear(scratch_.data(), scratch_.data() + column.size(),
-                                                   q->quantile);
+    r.threshold_ = column.size() == 0
+                       ? std::numeric_limits<Scalar>::infinity()
+                       : detail::numpy_percentile_linear(
+                             scratch_.data(), scratch_.data() + column.size(), q->quantile);
   } else {
     const auto& mad = std::get<MadGate>(strategy);
-    r.threshold_ =
-        compute_threshold(fit_column(matches, r.score_), MedianMad{mad.k, true}, scratch_);
+    const auto column = finite_fit_column(matches, r.score_);
+    r.threshold_ = column.size() == 0 ? std::numeric_limits<Scalar>::infinity()
+                                      : compute_threshold(column, MedianMad{mad.k, true}, scratch_);
   }
   r.magnitude_cut_ = chi != nullptr ? std::sqrt(r.threshold_) : r.threshold_;
   finish(matches, Scalar(0));
@@ -696,7 +708,8 @@ void ReprojectionScreen<Scalar>::finish(const Matches<Scalar>& matches, Scalar f
   Index kept = 0, floor_kept = 0, flagged_rejected = 0;
   for (Index i = 0; i < matches.size(); ++i) {
     const auto k = static_cast<std::size_t>(i);
-    const bool below = r.score_[k] <= r.threshold_;
+    // A residual that overflowed is never kept, whatever the rule says of its score.
+    const bool below = r.score_[k] <= r.threshold_ && std::isfinite(r.magnitude_[k]);
     const bool floored = !below && r.magnitude_[k] <= floor;
     bool keep = below || floored;
     if (reject_flagged && matches.on_dynamic_mask(i)) keep = false;

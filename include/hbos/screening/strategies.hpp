@@ -302,6 +302,12 @@ inline void validate(const ChiSquareGate& g) {
           "ChiSquareGate chi2_mono must be finite and > 0, got ", g.chi2_mono);
   require(g.chi2_stereo > 0.0 && std::isfinite(g.chi2_stereo),
           "ChiSquareGate chi2_stereo must be finite and > 0, got ", g.chi2_stereo);
+  // A stereo match's chi^2 is rescaled by this ratio onto the mono gate; bounded so that the
+  // rescaling neither underflows nor overflows in float (any sane pair is near 0.77).
+  const double ratio = g.chi2_mono / g.chi2_stereo;
+  require(ratio >= 1e-6 && ratio <= 1e6,
+          "ChiSquareGate chi2_mono / chi2_stereo must lie in [1e-6, 1e6], got ", g.chi2_mono, " / ",
+          g.chi2_stereo);
 }
 inline void validate(const QuantileGate& g) {
   require(g.quantile > 0.0 && g.quantile <= 1.0, "QuantileGate quantile must lie in (0, 1], got ",
