@@ -1,6 +1,7 @@
 #include "dynbench/dynbench_command.hpp"
 
 #include "common/atomic_file.hpp"
+#include "common/stop_on_signal.hpp"
 #include "dynbench/bench_figures.hpp"
 #include "dynbench/cell_run.hpp"
 #include "dynbench/cells.hpp"
@@ -14,12 +15,10 @@
 
 #include <opencv2/core.hpp>
 
-#include <signal.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <atomic>
-#include <csignal>
 #include <exception>
 #include <filesystem>
 #include <iostream>
@@ -38,34 +37,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-volatile std::sig_atomic_t g_stop = 0;
-
-extern "C" void dynbench_request_stop(int) { g_stop = 1; }
-
-/// While alive, SIGINT and SIGTERM ask the cells to stop (finished ones are kept); a second
-/// signal ends the process as usual (SA_RESETHAND).
-class StopOnSignal {
- public:
-  StopOnSignal() {
-    g_stop = 0;
-    struct sigaction action {};
-    action.sa_handler = &dynbench_request_stop;
-    sigemptyset(&action.sa_mask);
-    action.sa_flags = static_cast<int>(SA_RESETHAND);
-    ::sigaction(SIGINT, &action, &previous_int_);
-    ::sigaction(SIGTERM, &action, &previous_term_);
-  }
-  StopOnSignal(const StopOnSignal&) = delete;
-  StopOnSignal& operator=(const StopOnSignal&) = delete;
-  ~StopOnSignal() {
-    ::sigaction(SIGINT, &previous_int_, nullptr);
-    ::sigaction(SIGTERM, &previous_term_, nullptr);
-  }
-
- private:
-  struct sigaction previous_int_ {};
-  struct sigaction previous_term_ {};
-};
+using hbos::examples::StopOnSignal;
 
 struct CommandOptions {
   BenchSettings settings;
@@ -149,14 +121,14 @@ int run_grid(const BenchSettings& settings, std::ostream& out, std::ostream& err
     bar.status(fmt::format("rendering {} seed {} (or from the cache)", c.scenario, c.seed));
     const std::string dir = ensure_sequence(settings, c.scenario, c.seed);
     sequences[key] = {dir, sequence_fingerprint(dir)};
-    if (g_stop != 0) break;
+    if (StopOnSignal::stopped()) break;
   }
 
   // 2. The cells an earlier run finished with the same settings are taken as they are.
   std::vector<std::optional<CellMetrics>> results(cells.size());
   std::vector<nlohmann::json> expected(cells.size());
   std::vector<std::size_t> to_run;
-  for (std::size_t i = 0; i < cells.size() && g_stop == 0; ++i) {
+  for (std::size_t i = 0; i < cells.size() && !StopOnSignal::stopped(); ++i) {
     const auto& [dir, print] = sequences.at(fmt::format("{}_{}", cells[i].scenario, cells[i].seed));
     expected[i] = cell_settings(settings, cells[i], print);
     results[i] = load_finished_cell(settings, cells[i], expected[i]);
@@ -173,19 +145,19 @@ int run_grid(const BenchSettings& settings, std::ostream& out, std::ostream& err
   std::mutex error_mutex;
   std::exception_ptr first_error;
   const auto worker = [&] {
-    for (std::size_t k = next++; k < to_run.size() && g_stop == 0; k = next++) {
+    for (std::size_t k = next++; k < to_run.size() && !StopOnSignal::stopped(); k = next++) {
       const std::size_t i = to_run[k];
       const Cell& c = cells[i];
       try {
         const auto& dir = sequences.at(fmt::format("{}_{}", c.scenario, c.seed)).first;
         bar.status(
             fmt::format("running {} s{} mask {} screen {}", c.scenario, c.seed, c.mask, c.screen));
-        results[i] = run_cell(settings, c, dir, expected[i], &g_stop);
+        results[i] = run_cell(settings, c, dir, expected[i], StopOnSignal::flag());
         if (results[i]) bar.advance(cell_line(c, *results[i]));
       } catch (...) {
         const std::lock_guard<std::mutex> lock(error_mutex);
         if (!first_error) first_error = std::current_exception();
-        g_stop = 1;  // the other jobs stop too
+        StopOnSignal::request();  // the other jobs stop too
       }
     }
   };

@@ -3,6 +3,7 @@
 #include "case_builder.hpp"
 #include "case_writer.hpp"
 #include "common/atomic_file.hpp"
+#include "common/tool_main.hpp"
 #include "person_cutouts.hpp"
 
 #include <fmt/format.h>
@@ -130,13 +131,5 @@ int run(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  try {
-    return run(argc, argv);
-  } catch (const hbos::InvalidArgument& e) {
-    std::cerr << "hbos-screening-cases: " << e.what() << "\n";
-    return 2;
-  } catch (const std::exception& e) {
-    std::cerr << "hbos-screening-cases: " << e.what() << "\n";
-    return 1;
-  }
+  return hbos::examples::run_tool("hbos-screening-cases", [&] { return run(argc, argv); });
 }

@@ -3,6 +3,7 @@
 // rule of issue 7 item 7 per case. See docs/screening_cases.md.
 #include "case_metrics.hpp"
 #include "common/atomic_file.hpp"
+#include "common/tool_main.hpp"
 
 #include <fmt/format.h>
 #include <CLI/CLI.hpp>
@@ -183,13 +184,5 @@ int run(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  try {
-    return run(argc, argv);
-  } catch (const hbos::InvalidArgument& e) {
-    std::cerr << "hbos-screening-eval: " << e.what() << "\n";
-    return 2;
-  } catch (const std::exception& e) {
-    std::cerr << "hbos-screening-eval: " << e.what() << "\n";
-    return 1;
-  }
+  return hbos::examples::run_tool("hbos-screening-eval", [&] { return run(argc, argv); });
 }

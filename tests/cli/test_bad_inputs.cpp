@@ -23,34 +23,18 @@
 #include <thread>
 #include <vector>
 
+#include "../support/process.hpp"
+#include "../support/sanitizers.hpp"
+
 namespace fs = std::filesystem;
 using Catch::Contains;
 
 namespace {
 
-struct Run {
-  int exit_code = -1;  // -1: killed by a signal
-  std::string out;
-  std::string err;
-};
-
-std::string slurp(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-void spit(const fs::path& path, const std::string& text) {
-  std::ofstream(path, std::ios::binary) << text;
-}
-
-/// A shell word: single-quoted, with embedded single quotes escaped.
-std::string quoted(const std::string& word) {
-  std::string out = "'";
-  for (const char c : word) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
-}
+using hbos::test::quoted;
+using hbos::test::Run;
+using hbos::test::slurp;
+using hbos::test::spit;
 
 /// A fresh, empty directory for one case.
 fs::path scratch(const std::string& name) {
@@ -62,16 +46,7 @@ fs::path scratch(const std::string& name) {
 
 /// Runs `exe` with `args`; its output is captured in files under `dir`.
 Run run(const fs::path& dir, const std::string& exe, const std::vector<std::string>& args) {
-  std::string command = quoted(exe);
-  for (const std::string& arg : args) command += " " + quoted(arg);
-  command += " < /dev/null > " + quoted((dir / "stdout").string()) + " 2> " +
-             quoted((dir / "stderr").string());
-  const int status = std::system(command.c_str());
-  Run r;
-  if (status != -1 && WIFEXITED(status)) r.exit_code = WEXITSTATUS(status);
-  r.out = slurp(dir / "stdout");
-  r.err = slurp(dir / "stderr");
-  return r;
+  return hbos::test::run_process(exe, args, "/dev/null", dir / "stdout", dir / "stderr");
 }
 
 const std::string kScore = HBOS_SCORE_EXE;
@@ -163,6 +138,11 @@ TEST_CASE("bad input: hbos-score on a 2-row file of 500000 columns stays within 
   // Keeping every row and a fitted histogram per column cost 333x the file (issue 11): 2 MB
   // here would need ~670 MB resident and more address space; the streaming reader and
   // the per-feature fit need about 30 bytes a column.
+#ifdef HBOS_TEST_UNDER_ASAN
+  WARN("not under ASan: its shadow memory needs more address space than ulimit -v leaves; "
+       "this test runs in the plain builds");
+  return;
+#endif
   const fs::path dir = scratch("score_wide");
   {
     std::ofstream out(dir / "wide.csv");

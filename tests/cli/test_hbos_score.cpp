@@ -2,8 +2,6 @@
 // library, the PyOD mode against PyOD's own numbers, and every malformed input and bad option
 // checked for its exit code and message.
 
-#include <sys/wait.h>
-
 #include <hbos/model.hpp>
 #include <hbos/threshold.hpp>
 
@@ -17,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "../support/process.hpp"
 #include "csv_reader.hpp"
 
 namespace fs = std::filesystem;
@@ -25,25 +24,8 @@ namespace {
 
 const std::string kData = HBOS_CLI_TEST_DATA;
 
-struct Run {
-  int exit_code = -1;  // -1: killed by a signal
-  std::string out;
-  std::string err;
-};
-
-std::string slurp(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-/// A shell word: single-quoted, with embedded single quotes escaped.
-std::string quoted(const std::string& word) {
-  std::string out = "'";
-  for (const char c : word) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
-}
+using hbos::test::Run;
+using hbos::test::slurp;
 
 fs::path work_dir() {
   const fs::path dir = fs::path(HBOS_CLI_WORK_DIR) / "hbos_score_runs";
@@ -55,18 +37,8 @@ fs::path work_dir() {
 /// files that capture its output, so concurrently running tests do not share them.
 Run hbos_score(const std::string& tag, const std::vector<std::string>& args,
                const std::string& input = "") {
-  const fs::path out = work_dir() / (tag + ".out");
-  const fs::path err = work_dir() / (tag + ".err");
-  std::string command = quoted(HBOS_SCORE_EXE);
-  for (const std::string& arg : args) command += " " + quoted(arg);
-  command += " < " + quoted(input.empty() ? "/dev/null" : input) + " > " + quoted(out.string()) +
-             " 2> " + quoted(err.string());
-  const int status = std::system(command.c_str());
-  Run run;
-  if (status != -1 && WIFEXITED(status)) run.exit_code = WEXITSTATUS(status);
-  run.out = slurp(out);
-  run.err = slurp(err);
-  return run;
+  return hbos::test::run_process(HBOS_SCORE_EXE, args, input.empty() ? "/dev/null" : input,
+                                 work_dir() / (tag + ".out"), work_dir() / (tag + ".err"));
 }
 
 hbos::cli::CsvTable read_output(const std::string& text) {

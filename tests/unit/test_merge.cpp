@@ -5,6 +5,8 @@
 #include <hbos/merge.hpp>
 #include <hbos/model_file.hpp>
 
+#include "../support/mixed_features.hpp"
+
 #include <catch2/catch.hpp>
 #include <cstring>
 #include <random>
@@ -17,26 +19,11 @@ template class hbos::ShardedFit<double>;
 
 namespace {
 
-template <class Scalar>
-using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
+using hbos::test::mixed_features;
+using hbos::test::same_bits;
 
 template <class Scalar>
-Matrix<Scalar> make_data(std::uint32_t seed, Eigen::Index n) {
-  std::mt19937 rng(seed);
-  std::normal_distribution<double> normal;
-  std::exponential_distribution<double> expo(0.5);
-  std::uniform_int_distribution<int> dice(0, 6);
-  std::uniform_real_distribution<double> angle(-10.0, 10.0);
-  Matrix<Scalar> x(n, 5);
-  for (Eigen::Index i = 0; i < n; ++i) {
-    x(i, 0) = static_cast<Scalar>(normal(rng) * 4.0 + 100.0);
-    x(i, 1) = static_cast<Scalar>(expo(rng));
-    x(i, 2) = static_cast<Scalar>(dice(rng));
-    x(i, 3) = static_cast<Scalar>(angle(rng));
-    x(i, 4) = Scalar(2.5);  // a constant feature
-  }
-  return x;
-}
+using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
 
 std::vector<std::pair<std::string, hbos::HbosParams>> mergeable_modes() {
   std::vector<std::pair<std::string, hbos::HbosParams>> modes;
@@ -72,13 +59,6 @@ std::vector<std::pair<std::string, hbos::HbosParams>> mergeable_modes() {
   return modes;
 }
 
-template <class Scalar>
-bool same_bits(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& a,
-               const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& b) {
-  return a.size() == b.size() &&
-         std::memcmp(a.data(), b.data(), sizeof(Scalar) * static_cast<std::size_t>(a.size())) == 0;
-}
-
 /// Row shards of x at random boundaries (1 to 6 shards, some of one row).
 template <class Scalar>
 std::vector<Matrix<Scalar>> split(const Matrix<Scalar>& x, std::mt19937& rng) {
@@ -99,14 +79,14 @@ std::vector<Matrix<Scalar>> split(const Matrix<Scalar>& x, std::mt19937& rng) {
 template <class Scalar>
 void check_merged_equals_whole(std::uint32_t seed, const hbos::HbosParams& params) {
   std::mt19937 rng(seed);
-  const Matrix<Scalar> x = make_data<Scalar>(seed, 200 + 97 * seed);
+  const Matrix<Scalar> x = mixed_features<Scalar>(seed, 200 + 97 * seed, true);
   const auto whole = hbos::Hbos<Scalar>::fit(x, params);
   const auto shards = split(x, rng);
   const auto merged = hbos::fit_sharded(shards, params);
   CHECK(hbos::to_model_text(merged) == hbos::to_model_text(whole));
   Matrix<Scalar> q(2 * x.rows(), x.cols());
   q << x, (x.array() * Scalar(1.7) - Scalar(1)).matrix();
-  CHECK(same_bits<Scalar>(merged.score(q), whole.score(q)));
+  CHECK(same_bits(merged.score(q), whole.score(q)));
 
   // The summaries reduce in any order (a tree, reversed) to the same model.
   hbos::RangeSummary<Scalar> range;
@@ -139,7 +119,7 @@ TEST_CASE("a model merged from shards is bit-identical to the whole fit", "[merg
 }
 
 TEST_CASE("specs that need the whole data are refused, naming the feature", "[merge]") {
-  const Eigen::MatrixXd x = make_data<double>(1, 100);
+  const Eigen::MatrixXd x = mixed_features<double>(1, 100, true);
   const auto range = hbos::summarize_range(x);
   hbos::HbosParams p;
   p.feature.binning.method = hbos::BinningMethod::EqualFrequency;
@@ -157,7 +137,7 @@ TEST_CASE("specs that need the whole data are refused, naming the feature", "[me
 }
 
 TEST_CASE("inconsistent shards and summaries are refused", "[merge]") {
-  const Eigen::MatrixXd x = make_data<double>(2, 100);
+  const Eigen::MatrixXd x = mixed_features<double>(2, 100, true);
   const hbos::ShardedFit<double> plan(hbos::summarize_range(x.topRows(50)));
   // A row the range pass did not see.
   CHECK_THROWS_WITH(plan.count(x), Catch::Contains("outside the range"));

@@ -5,6 +5,8 @@
 #include <hbos/model_file.hpp>
 #include <hbos/pyod/model_file.hpp>
 
+#include "../support/mixed_features.hpp"
+
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdio>
@@ -18,26 +20,11 @@
 
 namespace {
 
+using hbos::test::mixed_features;
+using hbos::test::same_bits;
+
 template <class Scalar>
 using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
-
-/// Three features of different shapes, an integer-valued one (ties on edges) and an angle.
-template <class Scalar>
-Matrix<Scalar> make_data(std::uint32_t seed, Eigen::Index n) {
-  std::mt19937 rng(seed);
-  std::normal_distribution<double> normal;
-  std::exponential_distribution<double> expo(0.5);
-  std::uniform_int_distribution<int> dice(0, 6);
-  std::uniform_real_distribution<double> angle(-10.0, 10.0);
-  Matrix<Scalar> x(n, 4);
-  for (Eigen::Index i = 0; i < n; ++i) {
-    x(i, 0) = static_cast<Scalar>(normal(rng) * 4.0 + 100.0);
-    x(i, 1) = static_cast<Scalar>(expo(rng));
-    x(i, 2) = static_cast<Scalar>(dice(rng));
-    x(i, 3) = static_cast<Scalar>(angle(rng));
-  }
-  return x;
-}
 
 /// Data to score: the training rows, shifted copies reaching outside the fitted range.
 template <class Scalar>
@@ -102,13 +89,6 @@ std::vector<std::pair<std::string, hbos::HbosParams>> all_modes() {
   return modes;
 }
 
-template <class Scalar, int Rows, int Cols>
-bool same_bits(const Eigen::Matrix<Scalar, Rows, Cols>& a,
-               const Eigen::Matrix<Scalar, Rows, Cols>& b) {
-  return a.rows() == b.rows() && a.cols() == b.cols() &&
-         std::memcmp(a.data(), b.data(), sizeof(Scalar) * static_cast<std::size_t>(a.size())) == 0;
-}
-
 template <class Scalar>
 void check_round_trip(const Matrix<Scalar>& x, const hbos::HbosParams& params) {
   const auto model = hbos::Hbos<Scalar>::fit(x, params);
@@ -139,7 +119,7 @@ std::string sample_text() {
   hbos::HbosParams p;
   p.feature.binning.shifts = 1;
   p.feature.binning.bins = 3;
-  return hbos::to_model_text(hbos::Hbosd::fit(make_data<double>(5, 50).leftCols(2), p));
+  return hbos::to_model_text(hbos::Hbosd::fit(mixed_features<double>(5, 50).leftCols(2), p));
 }
 
 /// `text` with the line starting with `key` replaced by `replacement`.
@@ -171,8 +151,8 @@ TEST_CASE("a loaded model scores bit for bit like the saved one, every mode", "[
   for (const auto& [name, params] : all_modes()) {
     SECTION(name) {
       for (std::uint32_t seed = 1; seed <= 3; ++seed) {
-        check_round_trip(make_data<double>(seed, 300 + 71 * seed), params);
-        check_round_trip(make_data<float>(seed, 300 + 71 * seed), params);
+        check_round_trip(mixed_features<double>(seed, 300 + 71 * seed), params);
+        check_round_trip(mixed_features<float>(seed, 300 + 71 * seed), params);
       }
     }
   }
@@ -200,7 +180,7 @@ TEST_CASE("a constant feature and a single row round-trip", "[model_file]") {
 }
 
 TEST_CASE("save_model writes atomically and load_hbos reads it back", "[model_file]") {
-  const Eigen::MatrixXd x = make_data<double>(9, 500);
+  const Eigen::MatrixXd x = mixed_features<double>(9, 500);
   const auto model = hbos::Hbosd::fit(x);
   const std::string path = temp_path("model.hbos");
   std::filesystem::remove(path);
@@ -269,7 +249,7 @@ TEST_CASE("damaged model files are refused naming the line and the field", "[mod
 }
 
 TEST_CASE("Hbos::from_histograms refuses histograms that disagree with the spec", "[model_file]") {
-  const Eigen::MatrixXd x = make_data<double>(3, 200);
+  const Eigen::MatrixXd x = mixed_features<double>(3, 200);
   const auto model = hbos::Hbosd::fit(x);
   std::vector<hbos::Histogram<double>> histograms;
   for (Eigen::Index j = 0; j < model.n_features(); ++j) histograms.push_back(model.histogram(j));
@@ -369,7 +349,7 @@ TEST_CASE("a loaded PyOD-mode model still reproduces PyOD's test scores", "[mode
 
 TEST_CASE("damaged PyOD-mode model files are refused naming the line and the field",
           "[model_file][pyod]") {
-  const std::string text = hbos::to_model_text(hbos::PyodHbosd::fit(make_data<double>(2, 60)));
+  const std::string text = hbos::to_model_text(hbos::PyodHbosd::fit(mixed_features<double>(2, 60)));
   REQUIRE_NOTHROW(hbos::pyod_hbos_from_model_text<double>(text));
   auto refused = [](const std::string& damaged, const std::vector<std::string>& parts) {
     try {

@@ -2,6 +2,7 @@
 
 #include "common/atomic_file.hpp"
 #include "common/cli_validators.hpp"
+#include "common/stop_on_signal.hpp"
 #include "frontend/ablation.hpp"
 #include "frontend/camera.hpp"
 #include "frontend/config.hpp"
@@ -19,11 +20,9 @@
 #include <CLI/CLI.hpp>
 #include <hbos/error.hpp>
 
-#include <signal.h>
 #include <unistd.h>
 
 #include <cerrno>
-#include <csignal>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -127,35 +126,7 @@ void add_options(CLI::App& app, CommandOptions& o) {
 
 // ---- Ctrl-C: stop after the frame in progress and write what the run has --------------------
 
-volatile std::sig_atomic_t g_stop = 0;
-
-extern "C" void request_stop(int) { g_stop = 1; }
-
-/// While alive, SIGINT and SIGTERM set g_stop instead of ending the process; a second signal
-/// after the first ends it as usual (the default is back), so a stuck run can still be killed.
-class StopOnSignal {
- public:
-  StopOnSignal() {
-    g_stop = 0;
-    struct sigaction action {};
-    action.sa_handler = &request_stop;
-    sigemptyset(&action.sa_mask);
-    action.sa_flags = static_cast<int>(SA_RESETHAND);
-    ::sigaction(SIGINT, &action, &previous_int_);
-    ::sigaction(SIGTERM, &action, &previous_term_);
-  }
-  StopOnSignal(const StopOnSignal&) = delete;
-  StopOnSignal& operator=(const StopOnSignal&) = delete;
-  ~StopOnSignal() {
-    ::sigaction(SIGINT, &previous_int_, nullptr);
-    ::sigaction(SIGTERM, &previous_term_, nullptr);
-  }
-  [[nodiscard]] static bool stopped() { return g_stop != 0; }
-
- private:
-  struct sigaction previous_int_ {};
-  struct sigaction previous_term_ {};
-};
+using hbos::examples::StopOnSignal;
 
 // ---- checks before the run ----------------------------------------------------------------
 
@@ -214,12 +185,12 @@ int run_single(const CommandOptions& o, const CameraModel& camera, const RgbdSeq
   if (config.tracker == TrackerKind::kMap) {
     // A bar redrawn in place on a terminal, one line per frame in a log.
     const bool terminal = &err == &std::cerr && ::isatty(STDERR_FILENO) == 1;
-    map_run = run_map_tracker([&](int i) { return source.frame(i); }, n, config, camera,
-                              o.quiet ? nullptr : &err,
-                              terminal ? ProgressStyle::kBar : ProgressStyle::kLines, &g_stop);
+    map_run = run_map_tracker(
+        [&](int i) { return source.frame(i); }, n, config, camera, o.quiet ? nullptr : &err,
+        terminal ? ProgressStyle::kBar : ProgressStyle::kLines, StopOnSignal::flag());
   } else {
     frame_run = run_tracker([&](int i) { return source.frame(i); }, n, config, camera,
-                            o.quiet ? nullptr : &err, &g_stop);
+                            o.quiet ? nullptr : &err, StopOnSignal::flag());
   }
   RunResult& run = map_run ? map_run->run : frame_run;
   const bool interrupted = StopOnSignal::stopped();

@@ -107,6 +107,12 @@ TrackResult Tracker::track(const Frame& frame) {
   previous_ = std::move(current);
 
   // 8. Statistics against the person label.
+  count_match_statistics(out);
+  return out;
+}
+
+void count_match_statistics(TrackResult& out) {
+  FrameStats& stats = out.stats;
   stats.threshold = out.screen.threshold;
   stats.screen_us = out.screen.screen_us;
   stats.refine_us = out.screen.refine_us;
@@ -118,7 +124,6 @@ TrackResult Tracker::track(const Frame& frame) {
     stats.person_survivors += (m.on_person && m.kept) ? 1 : 0;
     stats.static_dropped += (!m.on_person && !m.kept) ? 1 : 0;
   }
-  return out;
 }
 
 }  // namespace hbos::slam

@@ -58,6 +58,10 @@ struct TrackResult {
   std::vector<MatchRecord> matches;  ///< same order as screen's vectors
 };
 
+/// Marks each match kept or not from the screen's decisions and counts, against the person
+/// label, what the screen kept and dropped (out.stats); both trackers end a frame with it.
+void count_match_statistics(TrackResult& out);
+
 /// Not thread-safe; one per sequence.
 class Tracker {
  public:

@@ -340,7 +340,7 @@ void MapTracker::finish(const Frame& frame, Features current, const std::vector<
     ok = false;
   }
   if (!ok) {
-    count_statistics(out);
+    count_match_statistics(out);
     lose(out);
     return;
   }
@@ -349,7 +349,7 @@ void MapTracker::finish(const Frame& frame, Features current, const std::vector<
   state_ = State::kTracking;
   out.stats.tracked = true;
   out.T_world_camera = T_camera_world.inverse();
-  count_statistics(out);
+  count_match_statistics(out);
 
   // The keyframe decision (keyframe_policy.hpp).
   KeyframeEvidence e;
@@ -429,21 +429,6 @@ void MapTracker::insert_keyframe(const Frame& frame, Features current,
       last_pixel_of_point_[added.point_of[k]] = added.features.keypoints[k].pt;
   }
   if (last_keypoints_.empty()) last_keypoints_ = added.features.keypoints;
-}
-
-void MapTracker::count_statistics(TrackResult& out) const {
-  FrameStats& stats = out.stats;
-  stats.threshold = out.screen.threshold;
-  stats.screen_us = out.screen.screen_us;
-  stats.refine_us = out.screen.refine_us;
-  for (std::size_t i = 0; i < out.matches.size(); ++i) {
-    MatchRecord& m = out.matches[i];
-    m.kept = i < out.screen.inlier.size() && out.screen.inlier[i] != 0;
-    stats.person_matches += m.on_person ? 1 : 0;
-    stats.survivors += m.kept ? 1 : 0;
-    stats.person_survivors += (m.on_person && m.kept) ? 1 : 0;
-    stats.static_dropped += (!m.on_person && !m.kept) ? 1 : 0;
-  }
 }
 
 }  // namespace hbos::slam

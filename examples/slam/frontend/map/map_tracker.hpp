@@ -91,7 +91,6 @@ class MapTracker {
   void lose(TrackResult& out);
   void insert_keyframe(const Frame& frame, Features current, const std::vector<int>& point_of,
                        const Eigen::Isometry3d& T_camera_world);
-  void count_statistics(TrackResult& out) const;
 
   Config config_;
   OrbExtractor extractor_;
