@@ -4,7 +4,7 @@
 set -euo pipefail
 packages=(g++ cmake make libeigen3-dev libopencv-dev catch2 libbenchmark-dev libcli11-dev
           nlohmann-json3-dev libfmt-dev pkg-config libosmesa6-dev pybind11-dev python3-dev
-          python3-numpy python3-pytest "$@")
+          python3-numpy python3-pytest python3-dask python3-distributed "$@")
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -1,12 +1,14 @@
 // The C++ half of the Python module `hbos` (examples/python/hbos/__init__.py holds the PyOD-style
 // HBOS class): the default model and the PyOD mode, fitted and scored on numpy float64 arrays
 // read in place (any strides, C or Fortran order: an Eigen::Map over numpy's buffer, no copy),
-// with the GIL released while the library runs, and their model files.
+// with the GIL released while the library runs, and their model files; and the two passes of
+// the sharded fit (hbos/merge.hpp) that hbos.dask reduces over the chunks of a Dask array.
 
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <hbos/merge.hpp>
 #include <hbos/model.hpp>
 #include <hbos/model_file.hpp>
 #include <hbos/pyod/model.hpp>
@@ -14,6 +16,8 @@
 
 #include <stdexcept>
 #include <string>
+#include <tuple>
+#include <vector>
 
 namespace py = pybind11;
 
@@ -53,7 +57,7 @@ struct DefaultModel {
   Eigen::VectorXd training_scores;
 };
 
-DefaultModel fit_default(const Array& x, const std::string& bins, Eigen::Index shifts) {
+hbos::HbosParams default_params(const std::string& bins, Eigen::Index shifts) {
   hbos::HbosParams params;
   params.feature.binning.shifts = shifts;
   if (bins == "auto") {
@@ -61,11 +65,77 @@ DefaultModel fit_default(const Array& x, const std::string& bins, Eigen::Index s
   } else if (!bins.empty()) {
     params.feature.binning.bins = std::stol(bins);
   }
+  return params;
+}
+
+DefaultModel fit_default(const Array& x, const std::string& bins, Eigen::Index shifts) {
+  const hbos::HbosParams params = default_params(bins, shifts);
   const Strided m = as_matrix(x);
   Eigen::VectorXd scores(m.rows());
   py::gil_scoped_release release;
   auto model = hbos::Hbosd::fit_and_score(m, scores, params);
   return DefaultModel{std::move(model), std::move(scores)};
+}
+
+// ---- the sharded fit: a range summary is (lo, hi, rows), a count summary a list of int64 arrays
+
+using Range = std::tuple<py::array_t<double>, py::array_t<double>, Eigen::Index>;
+using IndexArray = py::array_t<Eigen::Index, py::array::forcecast>;
+
+hbos::RangeSummary<double> range_from(const Array& lo, const Array& hi, Eigen::Index rows) {
+  if (lo.ndim() != 1 || hi.ndim() != 1)
+    throw std::invalid_argument("a range summary's lo and hi must be 1-D arrays");
+  hbos::RangeSummary<double> r;
+  r.lo.assign(lo.data(), lo.data() + lo.size());
+  r.hi.assign(hi.data(), hi.data() + hi.size());
+  r.rows = rows;
+  return r;
+}
+
+Range summarize_range(const Array& x) {
+  const Strided m = as_matrix(x);
+  hbos::RangeSummary<double> r;
+  {
+    py::gil_scoped_release release;
+    r = hbos::summarize_range(m);
+  }
+  py::array_t<double> lo(static_cast<py::ssize_t>(r.lo.size()));
+  py::array_t<double> hi(static_cast<py::ssize_t>(r.hi.size()));
+  std::copy(r.lo.begin(), r.lo.end(), lo.mutable_data());
+  std::copy(r.hi.begin(), r.hi.end(), hi.mutable_data());
+  return {lo, hi, r.rows};
+}
+
+std::vector<py::array_t<Eigen::Index>> count_shard(const Array& x, const Array& lo, const Array& hi,
+                                                   Eigen::Index rows, const std::string& bins,
+                                                   Eigen::Index shifts) {
+  const hbos::ShardedFit<double> plan(range_from(lo, hi, rows), default_params(bins, shifts));
+  const Strided m = as_matrix(x);
+  hbos::CountSummary c;
+  {
+    py::gil_scoped_release release;
+    c = plan.count(m);
+  }
+  std::vector<py::array_t<Eigen::Index>> out;
+  for (const auto& feature : c.counts) {
+    py::array_t<Eigen::Index> a(static_cast<py::ssize_t>(feature.size()));
+    std::copy(feature.begin(), feature.end(), a.mutable_data());
+    out.push_back(std::move(a));
+  }
+  return out;
+}
+
+DefaultModel model_from_counts(const Array& lo, const Array& hi, Eigen::Index rows,
+                               const std::string& bins, Eigen::Index shifts,
+                               const std::vector<IndexArray>& counts) {
+  const hbos::ShardedFit<double> plan(range_from(lo, hi, rows), default_params(bins, shifts));
+  hbos::CountSummary total;
+  total.rows = rows;
+  for (const auto& feature : counts) {
+    if (feature.ndim() != 1) throw std::invalid_argument("each feature's counts must be 1-D");
+    total.counts.emplace_back(feature.data(), feature.data() + feature.size());
+  }
+  return DefaultModel{plan.model(total), Eigen::VectorXd()};
 }
 
 }  // namespace
@@ -93,9 +163,19 @@ PYBIND11_MODULE(_hbos, m) {
                              [](const DefaultModel& s) { return s.model.n_features(); })
       .def("save", [](const DefaultModel& self,
                       const std::string& path) { hbos::save_model(self.model, path); })
-      .def_static("load", [](const std::string& path) {
-        return DefaultModel{hbos::load_hbos<double>(path), Eigen::VectorXd()};
-      });
+      .def_static("load",
+                  [](const std::string& path) {
+                    return DefaultModel{hbos::load_hbos<double>(path), Eigen::VectorXd()};
+                  })
+      .def_static("from_counts", &model_from_counts, py::arg("lo"), py::arg("hi"), py::arg("rows"),
+                  py::arg("bins"), py::arg("shifts"), py::arg("counts"))
+      // Pickled as its model-file text (exact: scores come back bit for bit), so a model
+      // travels to Dask workers; the training scores stay behind.
+      .def(py::pickle([](const DefaultModel& self) { return hbos::to_model_text(self.model); },
+                      [](const std::string& text) {
+                        return DefaultModel{hbos::hbos_from_model_text<double>(text, "pickle"),
+                                            Eigen::VectorXd()};
+                      }));
 
   py::class_<hbos::PyodHbosd>(m, "PyodModel")
       .def_static(
@@ -137,5 +217,10 @@ PYBIND11_MODULE(_hbos, m) {
       .def_static("load",
                   [](const std::string& path) { return hbos::load_pyod_hbos<double>(path); });
 
+  m.def("summarize_range", &summarize_range, py::arg("X"),
+        "pass 1 of the sharded fit: per feature min and max of X, and its row count");
+  m.def("count_shard", &count_shard, py::arg("X"), py::arg("lo"), py::arg("hi"), py::arg("rows"),
+        py::arg("bins"), py::arg("shifts"),
+        "pass 2: per feature the rows of X in each bin of the plan fixed by the global range");
   m.def("model_kind", [](const std::string& path) { return hbos::read_model_info(path).kind; });
 }

@@ -9,7 +9,8 @@
 
 Arrays are read in place when they are float64 with positive strides (C or Fortran order, or a
 strided view); other dtypes are converted first (one copy). The GIL is released while the C++
-code fits and scores. See docs/data_science.md.
+code fits and scores. Dask arrays: hbos.dask (fit on chunks, bit-identical to fit in memory).
+See docs/data_science.md.
 """
 
 import numpy as np
@@ -19,6 +20,13 @@ from . import _hbos
 InvalidArgument = _hbos.InvalidArgument
 
 __all__ = ["HBOS", "InvalidArgument"]
+
+_SHIFTS = 5  # the default mode's shifted origins
+
+
+def _default_bins(n_bins):
+    """The default mode's bin setting as the C++ core takes it ("" keeps 5 coarse bins)."""
+    return "" if n_bins is None or n_bins == 10 else str(n_bins)
 
 
 def _as_float64(X):
@@ -63,8 +71,7 @@ class HBOS:
             self.decision_scores_ = self._model.decision_scores
             self.threshold_ = self._model.threshold
         else:
-            bins = "" if self.n_bins is None or self.n_bins == 10 else str(self.n_bins)
-            self._model = _hbos.DefaultModel.fit(X, bins, 5)
+            self._model = _hbos.DefaultModel.fit(X, _default_bins(self.n_bins), _SHIFTS)
             self.decision_scores_ = self._model.training_scores
             self.threshold_ = float(np.percentile(self.decision_scores_,
                                                   100.0 * (1.0 - self.contamination)))
