@@ -74,6 +74,21 @@ void run_iterated(benchmark::State& state, const hbos::ScreenStrategy& strategy)
   state.SetItemsProcessed(state.iterations() * n);
 }
 
+/// Building the frame's Matches from the tracker's arrays (a streaming read: add per match into a
+/// reused, cleared container, as a tracker does each frame), to set against the screens' times.
+void BM_fill_matches(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  const hbos_test::Scene& scene = scene_of(n);
+  hbos::Matchesd matches;
+  matches.reserve(n);
+  fill(scene, matches);
+  for (auto _ : state) {
+    fill(scene, matches);
+    benchmark::DoNotOptimize(matches.size());
+  }
+  state.SetItemsProcessed(state.iterations() * n);
+}
+
 void BM_hbos_default(benchmark::State& s) { run_single(s, hbos::HbosScreen{}); }
 void BM_hbos_paper(benchmark::State& s) { run_single(s, hbos::HbosScreen::paper()); }
 void BM_chi2(benchmark::State& s) { run_single(s, hbos::ChiSquareGate{}); }
@@ -85,6 +100,7 @@ void BM_iterated_chi2(benchmark::State& s) { run_iterated(s, hbos::ChiSquareGate
 
 #define HBOS_SIZES \
   ->Arg(100)->Arg(300)->Arg(1000)->Arg(2000)->Arg(5000)->Unit(benchmark::kMicrosecond)
+BENCHMARK(BM_fill_matches) HBOS_SIZES;
 BENCHMARK(BM_hbos_default) HBOS_SIZES;
 BENCHMARK(BM_hbos_paper) HBOS_SIZES;
 BENCHMARK(BM_chi2) HBOS_SIZES;

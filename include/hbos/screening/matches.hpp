@@ -30,6 +30,9 @@
 
 namespace hbos {
 
+template <class Scalar>
+class ReprojectionScreen;
+
 /// ORB-SLAM's scale sigma of a keypoint detected at pyramid `octave`: `scale_factor^octave`.
 [[nodiscard]] inline double sigma_from_octave(int octave, double scale_factor = 1.2) {
   detail::require(octave >= 0, "octave must be >= 0, got ", octave);
@@ -187,6 +190,9 @@ class Matches {
   }
 
  private:
+  // The screen reads the columns directly, as whole arrays (vectorised arithmetic).
+  friend class ReprojectionScreen<Scalar>;
+
   void push(const Vector2& predicted, const Vector2& observed, Scalar predicted_right,
             Scalar observed_right, Scalar sigma, bool flag) {
     const Index i = size();
@@ -198,11 +204,13 @@ class Matches {
                     ": sigma must be finite and > 0, got ", sigma);
     // Screens use both sigma^2 and the information 1/sigma^2; a sigma whose square over- or
     // underflows would turn them into inf * 0 = NaN.
+    // (1/s2 is normal exactly when s2 <= 1/min, a power of two: no division per match)
     const Scalar s2 = sigma * sigma;
-    detail::require(std::isnormal(s2) && std::isnormal(Scalar(1) / s2), "match ", i, ": sigma ",
-                    sigma, " is out of range: sigma^2 and 1/sigma^2 must be finite ",
-                    "and normal, so sigma lies in [", std::sqrt(std::numeric_limits<Scalar>::min()),
-                    ", ", Scalar(1) / std::sqrt(std::numeric_limits<Scalar>::min()), "]");
+    constexpr Scalar kMin = std::numeric_limits<Scalar>::min();
+    if (!(s2 >= kMin && s2 <= Scalar(1) / kMin))  // (the message's bounds cost square roots)
+      detail::require(false, "match ", i, ": sigma ", sigma,
+                      " is out of range: sigma^2 and 1/sigma^2 must be finite and normal, so ",
+                      "sigma lies in [", std::sqrt(kMin), ", ", Scalar(1) / std::sqrt(kMin), "]");
     predicted_x_.push_back(predicted.x());
     predicted_y_.push_back(predicted.y());
     observed_x_.push_back(observed.x());

@@ -31,8 +31,8 @@ struct CoherenceWork {
   std::vector<Scalar> dx, dy;          ///< centred, whitened residual [px/sigma]
   std::vector<std::uint8_t> support;   ///< 1 = contributes to its neighbours' consensus
   std::vector<std::uint32_t> cell;     ///< the match's cell
-  std::vector<Scalar> sx, sy, count;   ///< per cell, then box-filtered
-  std::vector<Scalar> tx, ty, tcount;  ///< box-filter temporaries
+  std::vector<Scalar> sx, sy, count;   ///< per cell
+  std::vector<Scalar> tx, ty, tcount;  ///< per cell: the box-filtered sums, where evaluated
 };
 
 /// Fills `llr` (size n) with the coherence evidence of every match. `u`, `v` are the predicted
@@ -91,39 +91,48 @@ void coherence_evidence(const Scalar* u, const Scalar* v, const Scalar* depth, s
     work.sy[c] += k * work.dy[i];
     work.count[c] += Scalar(1);
   }
-  // Separable 3-box filter along x, y and (when used) the depth layers.
-  auto box = [&](std::size_t stride, std::size_t extent) {
-    for (auto* t : {&work.tx, &work.ty, &work.tcount}) t->resize(cells);
-    for (std::size_t c = 0; c < cells; ++c) {
-      const std::size_t along = (c / stride) % extent;
-      Scalar ax = work.sx[c], ay = work.sy[c], an = work.count[c];
-      if (along > 0) {
-        ax += work.sx[c - stride];
-        ay += work.sy[c - stride];
-        an += work.count[c - stride];
-      }
-      if (along + 1 < extent) {
-        ax += work.sx[c + stride];
-        ay += work.sy[c + stride];
-        an += work.count[c + stride];
-      }
-      work.tx[c] = ax;
-      work.ty[c] = ay;
-      work.tcount[c] = an;
-    }
-    work.sx.swap(work.tx);
-    work.sy.swap(work.ty);
-    work.count.swap(work.tcount);
+  // The 3-box sums along x, then y, then (when used) the depth layers, evaluated at the occupied
+  // cells only: a separable filter over every cell cost more than the rest of the evidence when
+  // the depth layers make the grid large and sparse. Each sum adds in the order the separable
+  // passes would (centre, before, after), so the sums are theirs bit for bit.
+  const std::size_t plane = nx * ny;
+  const auto box_x = [&](const std::vector<Scalar>& a, std::size_t c) {
+    const std::size_t cx = c % nx;
+    Scalar sum = a[c];
+    if (cx > 0) sum += a[c - 1];
+    if (cx + 1 < nx) sum += a[c + 1];
+    return sum;
   };
-  box(1, nx);
-  box(nx, ny);
-  if (nl > 1) box(nx * ny, nl);
+  const auto box_xy = [&](const std::vector<Scalar>& a, std::size_t c) {
+    const std::size_t cy = (c / nx) % ny;
+    Scalar sum = box_x(a, c);
+    if (cy > 0) sum += box_x(a, c - nx);
+    if (cy + 1 < ny) sum += box_x(a, c + nx);
+    return sum;
+  };
+  const auto box = [&](const std::vector<Scalar>& a, std::size_t c) {
+    Scalar sum = box_xy(a, c);
+    if (nl == 1) return sum;
+    const std::size_t cl = c / plane;
+    if (cl > 0) sum += box_xy(a, c - plane);
+    if (cl + 1 < nl) sum += box_xy(a, c + plane);
+    return sum;
+  };
+  // tx, ty, tcount memoise the sums per cell (tcount < 0: not yet evaluated).
+  work.tx.resize(cells);
+  work.ty.resize(cells);
+  work.tcount.assign(cells, Scalar(-1));
 
   const Scalar inv_2s2 = Scalar(1) / (Scalar(2) * scale * scale);
   const auto zz = static_cast<Scalar>(z0);
   for (std::size_t i = 0; i < n; ++i) {
     const std::uint32_t c = work.cell[i];
-    Scalar sx = work.sx[c], sy = work.sy[c], cnt = work.count[c];
+    if (work.tcount[c] < Scalar(0)) {
+      work.tx[c] = box(work.sx, c);
+      work.ty[c] = box(work.sy, c);
+      work.tcount[c] = box(work.count, c);
+    }
+    Scalar sx = work.tx[c], sy = work.ty[c], cnt = work.tcount[c];
     const Scalar dx = work.dx[i], dy = work.dy[i];
     if (work.support[i]) {  // a match is not its own neighbour
       const Scalar m = std::sqrt(dx * dx + dy * dy);

@@ -37,6 +37,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <type_traits>
 #include <vector>
 
 #include "hbos/error.hpp"
@@ -659,23 +660,49 @@ void ReprojectionScreen<Scalar>::run_gate(const Matches<Scalar>& matches) {
   r.magnitude_unit_ = stat.whiten ? "px/sigma" : "px";
   r.unit_ = stat.squared ? "px^2/sigma^2" : r.magnitude_unit_;
 
+  // The statistic over whole columns (Eigen arrays: SIMD division and square root; a scalar
+  // std::sqrt loop keeps its errno branch and does not vectorise). Stereo components are added
+  // in a second pass that frames without stereo matches skip.
   const auto* chi = std::get_if<ChiSquareGate>(&strategy);
-  for (Index i = 0; i < n; ++i) {
-    const auto k = static_cast<std::size_t>(i);
-    const Scalar e2 = matches.squared_residual(i);
-    const Scalar s2 = matches.sigma(i) * matches.sigma(i);
-    const Scalar m = stat.whiten ? std::sqrt(e2 / s2) : std::sqrt(e2);
-    r.magnitude_[k] = m;
-    Scalar score = m;
-    if (chi != nullptr) {
-      // One threshold for mixed frames: a stereo match's chi^2 is rescaled to the 2-dof gate.
-      score = e2 / s2;
-      if (matches.has_right(i) && std::isfinite(score))  // inf stays inf (never inf * 0)
-        score *= static_cast<Scalar>(chi->chi2_mono / chi->chi2_stereo);
+  using Array = Eigen::Array<Scalar, Eigen::Dynamic, 1>;
+  const Eigen::Map<const Array> px(matches.predicted_x_.data(), n);
+  const Eigen::Map<const Array> py(matches.predicted_y_.data(), n);
+  const Eigen::Map<const Array> ox(matches.observed_x_.data(), n);
+  const Eigen::Map<const Array> oy(matches.observed_y_.data(), n);
+  const Eigen::Map<const Array> sigma(matches.sigma_.data(), n);
+  Eigen::Map<Array> score(r.score_.data(), n), magnitude(r.magnitude_.data(), n);
+  score = (ox - px).square() + (oy - py).square();  // e^2 [px^2]
+  if (matches.stereo_count() > 0) {
+    for (Index i = 0; i < n; ++i) {
+      const Scalar right = matches.right_residual(i);  // 0 without a stereo component
+      score(i) += right * right;
     }
-    r.score_[k] = score;
-    r.contribution_[k] = score;
   }
+  // Eigen's float square root is an approximation under EIGEN_FAST_MATH (rsqrt and a Newton
+  // step: not correctly rounded, and NaN at inf); double's is the exact sqrtpd.
+  // (Coefficient-wise into a mapped buffer: no temporary, so no allocation.)
+  const auto sqrt_into = [](Eigen::Map<Array>& out, const Eigen::Map<Array>& in) {
+    if constexpr (std::is_same_v<Scalar, double>) {
+      out = in.sqrt();
+    } else {
+      out = in.unaryExpr([](Scalar v) { return std::sqrt(v); });
+    }
+  };
+  if (chi != nullptr) {
+    score /= sigma.square();
+    sqrt_into(magnitude, score);
+    if (matches.stereo_count() > 0) {
+      // One threshold for mixed frames: a stereo match's chi^2 is rescaled to the 2-dof gate.
+      const auto ratio = static_cast<Scalar>(chi->chi2_mono / chi->chi2_stereo);
+      for (Index i = 0; i < n; ++i)
+        if (matches.has_right(i) && std::isfinite(score(i))) score(i) *= ratio;  // inf stays inf
+    }
+  } else {
+    if (stat.whiten) score /= sigma.square();
+    sqrt_into(score, score);
+    magnitude = score;
+  }
+  std::copy(r.score_.begin(), r.score_.begin() + n, r.contribution_.begin());
 
   if (const auto* g = std::get_if<FixedPixelGate>(&strategy)) {
     r.threshold_ = static_cast<Scalar>(g->max_px);
@@ -705,18 +732,28 @@ template <class Scalar>
 void ReprojectionScreen<Scalar>::finish(const Matches<Scalar>& matches, Scalar floor) {
   ScreenResult<Scalar>& r = result_;
   const bool reject_flagged = config_.flagged == FlaggedPolicy::Reject;
+  const Scalar threshold = r.threshold_;
+  // Raw pointers, read once: stores through the uint8_t decisions may alias anything, so the
+  // vectors' data pointers would otherwise be reloaded every iteration (that and the branches
+  // were 40 % of a gate's time).
+  const std::uint8_t* flag = matches.flag_.data();
+  const Scalar* score = r.score_.data();
+  const Scalar* magnitude = r.magnitude_.data();
+  std::uint8_t* inlier = r.inlier_.data();
+  const auto n = static_cast<std::size_t>(matches.size());
   Index kept = 0, floor_kept = 0, flagged_rejected = 0;
-  for (Index i = 0; i < matches.size(); ++i) {
-    const auto k = static_cast<std::size_t>(i);
+  // Branch-free: the decisions of a frame are data, not control flow.
+  for (std::size_t k = 0; k < n; ++k) {
+    const Scalar m = magnitude[k];
     // A residual that overflowed is never kept, whatever the rule says of its score.
-    const bool below = r.score_[k] <= r.threshold_ && std::isfinite(r.magnitude_[k]);
-    const bool floored = !below && r.magnitude_[k] <= floor;
-    bool keep = below || floored;
-    if (reject_flagged && matches.on_dynamic_mask(i)) keep = false;
-    if (keep && floored) ++floor_kept;
-    if (!keep && matches.on_dynamic_mask(i)) ++flagged_rejected;
-    r.inlier_[k] = keep ? 1 : 0;
-    kept += keep ? 1 : 0;
+    const bool below = (score[k] <= threshold) & std::isfinite(m);
+    const bool floored = !below & (m <= floor);
+    const bool flagged = flag[k] != 0;
+    const bool keep = (below | floored) & !(reject_flagged & flagged);
+    floor_kept += keep & floored;
+    flagged_rejected += !keep & flagged;
+    inlier[k] = keep ? 1 : 0;
+    kept += keep;
   }
   r.n_inliers_ = kept;
   r.n_floor_ = floor_kept;
