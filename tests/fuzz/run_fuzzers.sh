@@ -11,7 +11,8 @@ shift $(( $# >= 2 ? 2 : 1 ))
 here=$(cd "$(dirname "$0")" && pwd)
 targets=("$@")
 if [ ${#targets[@]} -eq 0 ]; then
-  targets=(fuzz_library fuzz_screen fuzz_csv_reader fuzz_trajectory_reader fuzz_camera_reader)
+  targets=(fuzz_library fuzz_screen fuzz_model_file fuzz_csv_reader fuzz_trajectory_reader
+           fuzz_camera_reader)
 fi
 cmake --build "$build" -j2 --target "${targets[@]}"
 mkdir -p "$build/fuzz-artifacts" "$build/fuzz-logs"
