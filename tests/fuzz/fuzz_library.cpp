@@ -14,17 +14,12 @@
 #include <cstdlib>
 #include <vector>
 
+#include "fuzz_check.hpp"
 #include "fuzz_input.hpp"
 
 namespace {
 
 using hbos::fuzz::FuzzInput;
-
-// A broken promise: says which, then aborts (libFuzzer saves the input).
-#define check(condition)                                                                        \
-  ((condition) ? (void)0                                                                        \
-               : (std::fprintf(stderr, "broken promise: %s (line %d)\n", #condition, __LINE__), \
-                  std::abort()))
 
 /// Large legal sizes would only make the fuzzer slow, not find more: cap them (values beyond
 /// the legal range are kept, so the validation is still exercised).

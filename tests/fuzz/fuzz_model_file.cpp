@@ -14,12 +14,9 @@
 #include <string>
 #include <string_view>
 
-namespace {
+#include "fuzz_check.hpp"
 
-#define check(condition)                                                                        \
-  ((condition) ? (void)0                                                                        \
-               : (std::fprintf(stderr, "broken promise: %s (line %d)\n", #condition, __LINE__), \
-                  std::abort()))
+namespace {
 
 /// Rows to score: values around, at and far beyond any fitted range.
 template <class Scalar>

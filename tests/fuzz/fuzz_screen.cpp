@@ -9,17 +9,12 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "fuzz_check.hpp"
 #include "fuzz_input.hpp"
 
 namespace {
 
 using hbos::fuzz::FuzzInput;
-
-// A broken promise: says which, then aborts (libFuzzer saves the input).
-#define check(condition)                                                                        \
-  ((condition) ? (void)0                                                                        \
-               : (std::fprintf(stderr, "broken promise: %s (line %d)\n", #condition, __LINE__), \
-                  std::abort()))
 
 hbos::ScreenStrategy fuzz_strategy(FuzzInput& in) {
   switch (in.byte() % 8) {
