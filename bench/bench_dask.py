@@ -92,7 +92,7 @@ def main():
 
     for key in list(results):
         if key.endswith("_s") and results[key]:
-            results[key.replace("_s", "_rows_per_s")] = a.rows / results[key]
+            results[key[:-2] + "_rows_per_s"] = a.rows / results[key]
     print(json.dumps(results, indent=1))
     if a.json:
         with open(a.json + ".tmp", "w") as f:
