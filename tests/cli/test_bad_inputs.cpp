@@ -139,8 +139,9 @@ TEST_CASE("bad input: hbos-score on a 2-row file of 500000 columns stays within 
   // here would need ~670 MB resident and more address space; the streaming reader and
   // the per-feature fit need about 30 bytes a column.
 #ifdef HBOS_TEST_UNDER_ASAN
-  WARN("not under ASan: its shadow memory needs more address space than ulimit -v leaves; "
-       "this test runs in the plain builds");
+  WARN(
+      "not under ASan: its shadow memory needs more address space than ulimit -v leaves; "
+      "this test runs in the plain builds");
   return;
 #endif
   const fs::path dir = scratch("score_wide");
