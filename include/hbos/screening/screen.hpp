@@ -711,13 +711,11 @@ void ReprojectionScreen<Scalar>::run_gate(const Matches<Scalar>& matches) {
   } else if (const auto* q = std::get_if<QuantileGate>(&strategy)) {
     // Overflowed residuals (inf; never kept, see finish) are no measurement of the frame's
     // spread: the quantile and the MAD are taken over the finite ones.
-    const auto column = finite_fit_column(matches, r.score_);
-    scratch_.resize(static_cast<std::size_t>(column.size()));
-    std::copy(column.data(), column.data() + column.size(), scratch_.begin());
-    r.threshold_ = column.size() == 0
-                       ? std::numeric_limits<Scalar>::infinity()
-                       : detail::numpy_percentile_linear(
-                             scratch_.data(), scratch_.data() + column.size(), q->quantile);
+    // (fit_values_ is this frame's copy already: the selection may reorder it in place)
+    const Index m = finite_fit_column(matches, r.score_).size();
+    r.threshold_ = m == 0 ? std::numeric_limits<Scalar>::infinity()
+                          : detail::numpy_percentile_linear(fit_values_.data(),
+                                                            fit_values_.data() + m, q->quantile);
   } else {
     const auto& mad = std::get<MadGate>(strategy);
     const auto column = finite_fit_column(matches, r.score_);
