@@ -14,6 +14,7 @@
 #include <hbos/pyod/model.hpp>
 #include <hbos/pyod/model_file.hpp>
 
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <tuple>
@@ -45,6 +46,13 @@ Strided as_matrix(const Array& x) {
       Eigen::Stride<Eigen::Dynamic, Eigen::Dynamic>(col_stride / size, row_stride / size));
 }
 
+/// A fresh 1-D numpy array of n doubles, and a view of it the C++ core writes into: scores go
+/// straight into the array that Python gets, with no copy.
+py::array_t<double> new_scores(Eigen::Index n) { return py::array_t<double>(n); }
+Eigen::Map<Eigen::VectorXd> as_vector(py::array_t<double>& a) {
+  return {a.mutable_data(), static_cast<Eigen::Index>(a.size())};
+}
+
 py::array_t<double> to_numpy(const Eigen::VectorXd& v) {
   py::array_t<double> out(v.size());
   std::copy(v.data(), v.data() + v.size(), out.mutable_data());
@@ -54,7 +62,7 @@ py::array_t<double> to_numpy(const Eigen::VectorXd& v) {
 /// The default model: `bins` coarse equal-width bins (or a rule name) x `shifts`.
 struct DefaultModel {
   hbos::Hbosd model;
-  Eigen::VectorXd training_scores;
+  py::array_t<double> training_scores;  // empty for a loaded or merged model
 };
 
 hbos::HbosParams default_params(const std::string& bins, Eigen::Index shifts) {
@@ -71,10 +79,14 @@ hbos::HbosParams default_params(const std::string& bins, Eigen::Index shifts) {
 DefaultModel fit_default(const Array& x, const std::string& bins, Eigen::Index shifts) {
   const hbos::HbosParams params = default_params(bins, shifts);
   const Strided m = as_matrix(x);
-  Eigen::VectorXd scores(m.rows());
-  py::gil_scoped_release release;
-  auto model = hbos::Hbosd::fit_and_score(m, scores, params);
-  return DefaultModel{std::move(model), std::move(scores)};
+  py::array_t<double> scores = new_scores(m.rows());
+  Eigen::Map<Eigen::VectorXd> out = as_vector(scores);
+  std::optional<hbos::Hbosd> model;
+  {
+    py::gil_scoped_release release;
+    model.emplace(hbos::Hbosd::fit_and_score(m, out, params));
+  }
+  return DefaultModel{std::move(*model), std::move(scores)};
 }
 
 // ---- the sharded fit: a range summary is (lo, hi, rows), a count summary a list of int64 arrays
@@ -135,7 +147,7 @@ DefaultModel model_from_counts(const Array& lo, const Array& hi, Eigen::Index ro
     if (feature.ndim() != 1) throw std::invalid_argument("each feature's counts must be 1-D");
     total.counts.emplace_back(feature.data(), feature.data() + feature.size());
   }
-  return DefaultModel{plan.model(total), Eigen::VectorXd()};
+  return DefaultModel{plan.model(total), py::array_t<double>()};
 }
 
 }  // namespace
@@ -149,23 +161,23 @@ PYBIND11_MODULE(_hbos, m) {
       .def("decision_function",
            [](const DefaultModel& self, const Array& x) {
              const Strided mx = as_matrix(x);
-             Eigen::VectorXd scores(mx.rows());
+             py::array_t<double> scores = new_scores(mx.rows());
+             Eigen::Map<Eigen::VectorXd> out = as_vector(scores);
              {
                py::gil_scoped_release release;
-               self.model.score_into(mx, scores);
+               self.model.score_into(mx, out);
              }
-             return to_numpy(scores);
+             return scores;
            })
-      .def_property_readonly(
-          "training_scores",
-          [](const DefaultModel& self) { return to_numpy(self.training_scores); })
+      .def_property_readonly("training_scores",
+                             [](const DefaultModel& self) { return self.training_scores; })
       .def_property_readonly("n_features",
                              [](const DefaultModel& s) { return s.model.n_features(); })
       .def("save", [](const DefaultModel& self,
                       const std::string& path) { hbos::save_model(self.model, path); })
       .def_static("load",
                   [](const std::string& path) {
-                    return DefaultModel{hbos::load_hbos<double>(path), Eigen::VectorXd()};
+                    return DefaultModel{hbos::load_hbos<double>(path), py::array_t<double>()};
                   })
       .def_static("from_counts", &model_from_counts, py::arg("lo"), py::arg("hi"), py::arg("rows"),
                   py::arg("bins"), py::arg("shifts"), py::arg("counts"))
@@ -174,7 +186,7 @@ PYBIND11_MODULE(_hbos, m) {
       .def(py::pickle([](const DefaultModel& self) { return hbos::to_model_text(self.model); },
                       [](const std::string& text) {
                         return DefaultModel{hbos::hbos_from_model_text<double>(text, "pickle"),
-                                            Eigen::VectorXd()};
+                                            py::array_t<double>()};
                       }));
 
   py::class_<hbos::PyodHbosd>(m, "PyodModel")

@@ -27,8 +27,9 @@
 /// Interval convention: bin k holds [e_k, e_{k+1}), the last bin is closed. Counting and lookup
 /// call the same `bin_of`, so a training value is always scored from the bin it was counted in.
 ///
-/// Speed: fitting reads the column twice (a fused min/max/finiteness pass, then a counting pass
-/// with four interleaved sub-histograms so increments of one bin do not wait on each other);
+/// Speed: fitting reads the column twice (a fused min/max/finiteness pass, then a counting pass:
+/// up to 16 bins by vector compares of one-byte indices, beyond that into four interleaved
+/// sub-histograms so increments of one bin do not wait on each other);
 /// scoring is one pass of a subtract, a multiply, a truncation and a table lookup per value, with
 /// every out-of-range or non-finite value diverted to a slow path. Columns with direct access
 /// (matrices, maps, blocks, row-major maps) are read in place through their stride.
@@ -48,6 +49,7 @@
 #include <vector>
 
 #include "hbos/binning.hpp"
+#include "hbos/detail/byte_bins.hpp"
 #include "hbos/detail/scaling.hpp"
 #include "hbos/error.hpp"
 #include "hbos/histogram_parts.hpp"
@@ -288,7 +290,7 @@ void Histogram<Scalar>::contributions_into(const detail::ColumnView<Scalar>& x, 
     // with bin indices computed as counting computes them (in a loop the compiler vectorises).
     // A block with any other value takes the exact path, which gives the same contribution
     // wherever both apply (for v in [lo, hi) it is table[min(int(t), last)]).
-    const auto last = static_cast<std::int32_t>(bins() - 1);
+    const auto last = static_cast<Scalar>(bins() - 1);
     constexpr Index block = 256;
     std::array<std::int32_t, block> b{};
     for (Index start = 0; start < x.size; start += block) {
@@ -297,9 +299,10 @@ void Histogram<Scalar>::contributions_into(const detail::ColumnView<Scalar>& x, 
           detail::scan_min_max(detail::ColumnView<Scalar>{x.data + start * x.stride, m, x.stride});
       Scalar* o = out + start;
       if (range.finite && range.lo >= lo && range.hi < hi) {
-        for (Index i = 0; i < m; ++i)
-          b[static_cast<std::size_t>(i)] =
-              std::min(static_cast<std::int32_t>((at(start + i) - lo) * inv), last);
+        for (Index i = 0; i < m; ++i) {
+          const Scalar u = (at(start + i) - lo) * inv;  // capped before truncating, as count() does
+          b[static_cast<std::size_t>(i)] = static_cast<std::int32_t>(u < last ? u : last);
+        }
         if (accumulate) {
           for (Index i = 0; i < m; ++i) o[i] += table[b[static_cast<std::size_t>(i)]];
         } else {
@@ -337,15 +340,52 @@ void Histogram<Scalar>::count(const detail::ColumnView<Scalar>& x, BinIndex* bin
     return;
   }
   // Every value lies in [lo, hi] here. A block of bin indices is computed first, in a loop the
-  // compiler vectorises (truncation of (v - lo) * inv to int32, then a cap: hi and anything
-  // rounding past it belong to the last bin; the same arithmetic as uniform_bin), and then
-  // counted into four interleaved sub-histograms, so that consecutive values in the same bin
-  // increment different counters and the increments do not serialise.
+  // compiler vectorises: (v - lo) * inv, capped at the last bin in floating point (hi and
+  // anything rounding past it belong to the last bin; capping before the truncation gives the
+  // truncated value uniform_bin gives, and needs no integer min, which SSE2 lacks), truncated.
+  const Scalar lo = layout_.lo, inv = layout_.inv_width;
+  const auto last_bin = static_cast<Scalar>(k - 1);
+  auto bin_at = [&](auto at, Index i) {
+    const Scalar u = (at(i) - lo) * inv;
+    return static_cast<std::int32_t>(u < last_bin ? u : last_bin);
+  };
+  constexpr Index block = 256;
+  if (k <= detail::kCompareCountMaxBins) {
+    // Few bins: the indices go to bytes (the caller's, when it records one-byte indices) and are
+    // counted by comparison (detail/byte_bins.hpp).
+    std::array<std::uint64_t, detail::kCompareCountMaxBins> few{};
+    std::array<std::uint8_t, block> local{};
+    std::array<Scalar, block> gathered{};
+    detail::with_access(x, [&](auto at) {
+      for (Index start = 0; start < n; start += block) {
+        const Index m = std::min(block, n - start);
+        const auto mm = static_cast<std::size_t>(m);
+        std::uint8_t* b = local.data();
+        if constexpr (sizeof(BinIndex) == 1) {
+          if (bin_index != nullptr) b = reinterpret_cast<std::uint8_t*>(bin_index + start);
+        }
+        const Scalar* values = x.data + start;
+        if (x.stride != 1) {
+          // A strided column is gathered first: the block then takes the vector kernel too.
+          for (Index i = 0; i < m; ++i) gathered[static_cast<std::size_t>(i)] = at(start + i);
+          values = gathered.data();
+        }
+        detail::uniform_byte_bins(values, mm, lo, inv, last_bin, b);
+        detail::count_byte_indices(b, mm, k, few.data());
+        if constexpr (sizeof(BinIndex) != 1) {
+          if (bin_index != nullptr)
+            for (Index i = 0; i < m; ++i)
+              bin_index[start + i] = static_cast<BinIndex>(b[static_cast<std::size_t>(i)]);
+        }
+      }
+    });
+    for (std::size_t j = 0; j < k; ++j) counts_[j] = static_cast<Index>(few[j]);
+    return;
+  }
+  // More bins: counted into four interleaved sub-histograms, so that consecutive values in the
+  // same bin increment different counters and the increments do not serialise.
   rule_scratch_.cells.assign(4 * k, 0);
   std::uint32_t* sub = rule_scratch_.cells.data();
-  const Scalar lo = layout_.lo, inv = layout_.inv_width;
-  const auto last = static_cast<std::int32_t>(k - 1);
-  constexpr Index block = 256;
   std::array<std::int32_t, block> b{};
   auto slot = [&](Index i, std::size_t lane) {
     return 4 * static_cast<std::size_t>(b[static_cast<std::size_t>(i)]) + lane;
@@ -353,9 +393,7 @@ void Histogram<Scalar>::count(const detail::ColumnView<Scalar>& x, BinIndex* bin
   detail::with_access(x, [&](auto at) {
     for (Index start = 0; start < n; start += block) {
       const Index m = std::min(block, n - start);
-      for (Index i = 0; i < m; ++i)
-        b[static_cast<std::size_t>(i)] =
-            std::min(static_cast<std::int32_t>((at(start + i) - lo) * inv), last);
+      for (Index i = 0; i < m; ++i) b[static_cast<std::size_t>(i)] = bin_at(at, start + i);
       const Index m4 = m - m % 4;
       for (Index i = 0; i < m4; i += 4) {
         ++sub[slot(i, 0)];

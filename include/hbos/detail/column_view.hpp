@@ -4,6 +4,7 @@
 /// shared by edge placement (binning.hpp) and counting and scoring (histogram.hpp).
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <utility>
@@ -105,6 +106,29 @@ MinMax<Scalar> scan_min_max(const ColumnView<Scalar>& x) {
       hi = in::predux_max(in::pmax(in::pmax(hi0, hi1), in::pmax(hi2, hi3)));
       check = in::predux(in::padd(c0, c1));
     }
+  }
+  if (x.stride != 1) {
+    // Strided (a row-major matrix's column, numpy's default layout): no packets, but four
+    // independent min/max chains, for the same reason as above.
+    const Scalar* p = x.data;
+    const Eigen::Index s = x.stride;
+    Scalar lo1 = lo, lo2 = lo, lo3 = lo, hi1 = hi, hi2 = hi, hi3 = hi, c1 = 0;
+    for (; i + 4 <= x.size; i += 4) {
+      const Scalar a = p[i * s], b = p[(i + 1) * s], c = p[(i + 2) * s], d = p[(i + 3) * s];
+      lo = a < lo ? a : lo;
+      lo1 = b < lo1 ? b : lo1;
+      lo2 = c < lo2 ? c : lo2;
+      lo3 = d < lo3 ? d : lo3;
+      hi = a > hi ? a : hi;
+      hi1 = b > hi1 ? b : hi1;
+      hi2 = c > hi2 ? c : hi2;
+      hi3 = d > hi3 ? d : hi3;
+      check += a * Scalar(0) + b * Scalar(0);
+      c1 += c * Scalar(0) + d * Scalar(0);
+    }
+    lo = std::min(std::min(lo, lo1), std::min(lo2, lo3));
+    hi = std::max(std::max(hi, hi1), std::max(hi2, hi3));
+    check += c1;
   }
   for (; i < x.size; ++i) {
     const Scalar v = x[i];
