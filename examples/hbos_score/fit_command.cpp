@@ -2,18 +2,23 @@
 
 #include <CLI/CLI.hpp>
 
+#include <hbos/merge.hpp>
 #include <hbos/model.hpp>
 #include <hbos/model_file.hpp>
 #include <hbos/pyod/model.hpp>
 #include <hbos/pyod/model_file.hpp>
 
+#include <cstdint>
 #include <cstdio>
+#include <filesystem>
 #include <map>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
 #include "csv_reader.hpp"
 #include "npy_reader.hpp"
+#include "row_blocks.hpp"
 
 namespace hbos::cli {
 namespace {
@@ -92,6 +97,43 @@ PyodParams pyod_params(const FitOptions& o) {
   return p;
 }
 
+/// Whether the default-mode fit streams: a CSV file that can be read twice (not standard input,
+/// not .npy, which is read whole anyway), bins that need only each feature's range and the row
+/// count (hbos/merge.hpp: equal or fixed width with a fixed, sqrt or Sturges count), and a file
+/// long for its width. The sharded plan holds a histogram per feature (about 1 KiB with its
+/// summaries) whatever the rows, the in-memory fit 8 bytes a value but one histogram at a time:
+/// a file of 2 rows x 1e7 columns is cheaper in memory (a 20 GB plan against 160 MB of values).
+bool streamable(const FitOptions& o, const HbosParams& params, const CsvOptions& csv) {
+  // The CLI gives every feature the same spec, so one feature stands for all.
+  if (o.input == "-" || is_npy_path(o.input) || !mergeable(params, 1)) return false;
+  std::error_code error;
+  const auto bytes = std::filesystem::file_size(o.input, error);
+  if (error) return false;  // the in-memory path reports what is wrong with the file
+  constexpr std::uintmax_t kPlanBytesPerFeature = 2048;
+  const auto features = static_cast<std::uintmax_t>(csv_feature_count(o.input, csv));
+  return bytes > features * kPlanBytesPerFeature;
+}
+
+/// The default-mode fit in two streaming passes over the file (its range, then its counts in
+/// the bins that range fixes): bit-identical to Hbos::fit on all the rows (hbos/merge.hpp), in
+/// memory bounded by a block of rows, whatever the length of the file.
+Hbosd fit_streaming(const std::string& path, const CsvOptions& csv, const HbosParams& params) {
+  std::optional<RangeSummary<double>> range;
+  for_each_row_block(path, csv, [&](const RowBlock& block) {
+    RangeSummary<double> r = summarize_range(block);
+    range = range ? merge(*range, r) : std::move(r);
+  });
+  const ShardedFit<double> plan(*range, params);  // the reader refuses a file without rows
+  std::optional<CountSummary> total;
+  for_each_row_block(path, csv, [&](const RowBlock& block) {
+    CountSummary c = plan.count(block);
+    total = total ? merge(*total, c) : std::move(c);
+  });
+  // A file that changed between the passes no longer matches its range or its row count:
+  // ShardedFit refuses the values or the counts then, naming what is wrong.
+  return plan.model(*total);
+}
+
 }  // namespace
 
 int fit_command(int argc, char** argv) {
@@ -140,14 +182,24 @@ int fit_command(int argc, char** argv) {
     if (o.header) csv.header = HeaderMode::Present;
     if (o.no_header) csv.header = HeaderMode::Absent;
     csv.label_column = o.label_column;
-    const Eigen::MatrixXd x = read_data_matrix(o.input, csv);
-    if (o.mode == "pyod") {
-      save_model(PyodHbosd::fit(x, pyod_params(o)), o.output);
+    Eigen::Index rows = 0, cols = 0;
+    if (o.mode == "default" && streamable(o, default_params(o), csv)) {
+      const Hbosd model = fit_streaming(o.input, csv, default_params(o));
+      rows = model.n_samples();
+      cols = model.n_features();
+      save_model(model, o.output);
     } else {
-      save_model(Hbosd::fit(x, default_params(o)), o.output);
+      const Eigen::MatrixXd x = read_data_matrix(o.input, csv);
+      rows = x.rows();
+      cols = x.cols();
+      if (o.mode == "pyod") {
+        save_model(PyodHbosd::fit(x, pyod_params(o)), o.output);
+      } else {
+        save_model(Hbosd::fit(x, default_params(o)), o.output);
+      }
     }
     std::fprintf(stderr, "hbos-score fit: %s model of %lld rows x %lld features written to %s\n",
-                 o.mode.c_str(), static_cast<long long>(x.rows()), static_cast<long long>(x.cols()),
+                 o.mode.c_str(), static_cast<long long>(rows), static_cast<long long>(cols),
                  o.output.c_str());
     return 0;
   } catch (const CsvError& e) {

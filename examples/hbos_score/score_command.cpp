@@ -14,6 +14,7 @@
 #include "common/atomic_file.hpp"
 #include "csv_reader.hpp"
 #include "npy_reader.hpp"
+#include "row_blocks.hpp"
 
 namespace hbos::cli {
 namespace {
@@ -60,27 +61,42 @@ int score_command(int argc, char** argv) {
     if (header) csv.header = HeaderMode::Present;
     if (no_header) csv.header = HeaderMode::Absent;
     csv.label_column = label_column;
+    // The output is opened first (a path that cannot be written fails before any reading);
+    // rows are then read, scored and written a block at a time, so memory stays bounded
+    // whatever the length of the file. An error mid-file leaves the output untouched.
+    hbos::examples::AtomicFile out(output);
     std::string text;
+    auto write_if_full = [&] {
+      if (text.size() >= (std::size_t{1} << 20)) {
+        out.write(text);
+        text.clear();
+      }
+    };
+    Eigen::VectorXd scores;
     if (info.kind == "pyod") {
       const auto model = load_pyod_hbos<double>(model_path);
-      const Eigen::MatrixXd x = read_data_matrix(input, csv);
-      const Eigen::VectorXd scores = model.decision_function(x);
       text = "score,label\n";
-      for (Eigen::Index i = 0; i < scores.size(); ++i) {
-        append_number(text, scores[i]);
-        text += scores[i] > model.threshold() ? ",1\n" : ",0\n";
-      }
+      for_each_row_block(input, csv, [&](const RowBlock& block) {
+        scores = model.decision_function(block);
+        for (Eigen::Index i = 0; i < scores.size(); ++i) {
+          append_number(text, scores[i]);
+          text += scores[i] > model.threshold() ? ",1\n" : ",0\n";
+        }
+        write_if_full();
+      });
     } else {
       const auto model = load_hbos<double>(model_path);
-      const Eigen::MatrixXd x = read_data_matrix(input, csv);
-      const Eigen::VectorXd scores = model.score(x);
       text = "score\n";
-      for (Eigen::Index i = 0; i < scores.size(); ++i) {
-        append_number(text, scores[i]);
-        text += '\n';
-      }
+      for_each_row_block(input, csv, [&](const RowBlock& block) {
+        scores.resize(block.rows());
+        model.score_into(block, scores);
+        for (Eigen::Index i = 0; i < scores.size(); ++i) {
+          append_number(text, scores[i]);
+          text += '\n';
+        }
+        write_if_full();
+      });
     }
-    hbos::examples::AtomicFile out(output);
     out.write(text);
     out.commit();
     return 0;

@@ -3,10 +3,12 @@
 // checked for its exit code and message.
 
 #include <hbos/model.hpp>
+#include <hbos/model_file.hpp>
 #include <hbos/threshold.hpp>
 
 #include <algorithm>
 #include <catch2/catch.hpp>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -339,4 +341,86 @@ TEST_CASE("hbos-score: help, version and an unwritable output", "[cli][hbos_scor
   CHECK_THAT(unwritable.err,
              Catch::Contains("hbos-score: error: cannot create a temporary file next to "
                              "/nonexistent/dir/out.csv"));
+}
+
+TEST_CASE("hbos-score fit / score stream a file of many blocks, bit for bit the in-memory fit",
+          "[cli][hbos_score][streaming]") {
+  // 150,001 rows x 3: three blocks of 65,536 rows and a partial one. `fit` on the file reads it
+  // twice in blocks (range, then counts); on standard input it reads it whole. Same model file,
+  // byte for byte, and both are Hbos::fit on the parsed rows; `score` streams too, and its
+  // scores are the library's, bit for bit (shortest round-trip decimals).
+  const fs::path dir = work_dir();
+  const fs::path csv = dir / "streaming.csv";
+  const Eigen::Index n = 150001;
+  {
+    std::ofstream out(csv);
+    out << "a,b,c\n";
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const auto k = static_cast<double>(i);
+      out << std::sin(k) * 7.0 << ',' << static_cast<double>(i % 97) * 0.5 << ','
+          << std::cos(k * 0.37) * 1e-3 << (i == 77777 ? "e4" : "") << '\n';  // one far outlier in c
+    }
+  }
+  for (const std::string bins : {"5", "sturges"}) {
+    INFO("bins " << bins);
+    const std::string file_model = (dir / ("streaming_file_" + bins + ".hbos")).string();
+    const std::string stdin_model = (dir / ("streaming_stdin_" + bins + ".hbos")).string();
+    Run r =
+        hbos_score("streaming_fit_file", {"fit", csv.string(), "--bins", bins, "-o", file_model});
+    INFO(r.err);
+    REQUIRE(r.exit_code == 0);
+    CHECK_THAT(r.err, Catch::Contains("150001 rows x 3 features"));
+    r = hbos_score("streaming_fit_stdin", {"fit", "-", "--bins", bins, "-o", stdin_model},
+                   csv.string());
+    REQUIRE(r.exit_code == 0);
+    REQUIRE(slurp(file_model) == slurp(stdin_model));
+
+    const hbos::cli::CsvTable table = hbos::cli::read_csv(csv.string());
+    hbos::HbosParams params;
+    if (bins == "sturges") params.feature.binning.rule = hbos::BinCountRule::Sturges;
+    const hbos::Hbosd direct = hbos::Hbosd::fit(table.features, params);
+    const hbos::Hbosd loaded = hbos::load_hbos<double>(file_model);
+    const Eigen::VectorXd expected = direct.score(table.features);
+    REQUIRE(loaded.score(table.features) == expected);
+
+    const std::string scores = (dir / ("streaming_scores_" + bins + ".csv")).string();
+    r = hbos_score("streaming_score", {"score", file_model, csv.string(), "-o", scores});
+    REQUIRE(r.exit_code == 0);
+    const hbos::cli::CsvTable got = read_output(slurp(scores));
+    REQUIRE(got.rows() == n);
+    CHECK(got.features.col(0) == expected);
+    Eigen::Index top = 0;
+    expected.maxCoeff(&top);
+    CHECK(top == 77777);
+  }
+}
+
+TEST_CASE("hbos-score score opens its output before reading and leaves it untouched on bad data",
+          "[cli][hbos_score][streaming]") {
+  const fs::path dir = work_dir();
+  const fs::path good = dir / "score_untouched.csv";
+  {
+    std::ofstream out(good);
+    out << "a,b\n";
+    for (int i = 0; i < 100000; ++i) out << i % 13 << ',' << i % 7 << '\n';
+    out << "1,oops\n";  // the bad row comes after more than one block
+  }
+  const std::string model = (dir / "score_untouched.hbos").string();
+  {
+    std::ofstream small(dir / "small.csv");
+    small << "a,b\n1,2\n3,4\n5,7\n";
+  }
+  Run r = hbos_score("untouched_fit", {"fit", (dir / "small.csv").string(), "-o", model});
+  REQUIRE(r.exit_code == 0);
+  const fs::path out = dir / "score_untouched_out.csv";
+  { std::ofstream(out) << "previous\n"; }
+  r = hbos_score("untouched_score", {"score", model, good.string(), "-o", out.string()});
+  CHECK(r.exit_code == 2);
+  CHECK_THAT(r.err, Catch::Contains("score_untouched.csv:100002"));
+  CHECK(slurp(out) == "previous\n");
+  // An output folder that does not exist fails before the data is read.
+  r = hbos_score("untouched_dir",
+                 {"score", model, good.string(), "-o", (dir / "no_such_dir" / "x.csv").string()});
+  CHECK(r.exit_code == 1);
+  CHECK_THAT(r.err, !Catch::Contains("oops"));
 }
