@@ -133,17 +133,39 @@ TEST_CASE("bad input: hbos-score on a directory says so", "[bad_inputs][hbos_sco
   CHECK_THAT(r.err, Contains(dir.string() + ": is a directory"));
 }
 
+namespace {
+
+/// The memory tests bound the address space with `ulimit -v`, which ASan's shadow memory
+/// cannot live with: they run in the plain builds and say so under ASan.
+bool skipped_under_asan() {
+#ifdef HBOS_TEST_UNDER_ASAN
+  WARN(
+      "not under ASan: its shadow memory needs more address space than ulimit -v leaves; "
+      "this test runs in the plain builds");
+  return true;
+#else
+  return false;
+#endif
+}
+
+/// Runs hbos-score with `args` under `ulimit -v kib`, standard error into `err`; returns its
+/// exit code, or -1 when it did not exit normally.
+int score_within(int kib, const std::vector<std::string>& args, const fs::path& err) {
+  std::string command = "ulimit -v " + std::to_string(kib) + "; " + quoted(kScore);
+  for (const std::string& a : args) command += " " + quoted(a);
+  command += " 2> " + quoted(err.string());
+  const int status = std::system(command.c_str());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+}  // namespace
+
 TEST_CASE("bad input: hbos-score on a 2-row file of 500000 columns stays within 500 MB",
           "[bad_inputs][hbos_score][memory]") {
   // Keeping every row and a fitted histogram per column cost 333x the file (issue 11): 2 MB
   // here would need ~670 MB resident and more address space; the streaming reader and
   // the per-feature fit need about 30 bytes a column.
-#ifdef HBOS_TEST_UNDER_ASAN
-  WARN(
-      "not under ASan: its shadow memory needs more address space than ulimit -v leaves; "
-      "this test runs in the plain builds");
-  return;
-#endif
+  if (skipped_under_asan()) return;
   const fs::path dir = scratch("score_wide");
   {
     std::ofstream out(dir / "wide.csv");
@@ -152,13 +174,11 @@ TEST_CASE("bad input: hbos-score on a 2-row file of 500000 columns stays within 
       out << "\n";
     }
   }
-  const std::string command =
-      "ulimit -v 500000; " + quoted(kScore) + " " + quoted((dir / "wide.csv").string()) +
-      " -q -o " + quoted((dir / "out.csv").string()) + " 2> " + quoted((dir / "stderr").string());
-  const int status = std::system(command.c_str());
+  const int code =
+      score_within(500000, {(dir / "wide.csv").string(), "-q", "-o", (dir / "out.csv").string()},
+                   dir / "stderr");
   INFO(slurp(dir / "stderr"));
-  REQUIRE(WIFEXITED(status));
-  CHECK(WEXITSTATUS(status) == 0);
+  CHECK(code == 0);
   CHECK_THAT(slurp(dir / "out.csv"), Contains("score,label"));
 }
 
@@ -167,33 +187,21 @@ TEST_CASE("bad input: hbos-score fit and score on 4e6 rows stay within 60 MB of 
   // Both read the whole file before (issue 10: 5.5 GB resident to score a 0.7 GB file): with a
   // 20 MB file here, `score` failed even at 200 MB and `fit` at 60 MB. Now `fit` streams the
   // file twice (range, then counts) and `score` a block of rows at a time.
-#ifdef HBOS_TEST_UNDER_ASAN
-  WARN(
-      "not under ASan: its shadow memory needs more address space than ulimit -v leaves; "
-      "this test runs in the plain builds");
-  return;
-#endif
+  if (skipped_under_asan()) return;
   const fs::path dir = scratch("score_tall");
   {
     std::ofstream out(dir / "tall.csv");
     out << "a\n";
     for (long long i = 0; i < 4000000; ++i) out << (i * 7919) % 100 << '.' << i % 10 << '\n';
   }
-  const std::string limit = "ulimit -v 60000; ";
-  const std::string model = (dir / "tall.hbos").string();
-  std::string command = limit + quoted(kScore) + " fit " + quoted((dir / "tall.csv").string()) +
-                        " -o " + quoted(model) + " 2> " + quoted((dir / "fit.err").string());
-  int status = std::system(command.c_str());
+  const std::string data = (dir / "tall.csv").string(), model = (dir / "tall.hbos").string();
+  const int fit = score_within(60000, {"fit", data, "-o", model}, dir / "fit.err");
   INFO(slurp(dir / "fit.err"));
-  REQUIRE(WIFEXITED(status));
-  REQUIRE(WEXITSTATUS(status) == 0);
-  command = limit + quoted(kScore) + " score " + quoted(model) + " " +
-            quoted((dir / "tall.csv").string()) + " -o " + quoted((dir / "scores.csv").string()) +
-            " 2> " + quoted((dir / "score.err").string());
-  status = std::system(command.c_str());
+  REQUIRE(fit == 0);
+  const int score = score_within(60000, {"score", model, data, "-o", (dir / "scores.csv").string()},
+                                 dir / "score.err");
   INFO(slurp(dir / "score.err"));
-  REQUIRE(WIFEXITED(status));
-  CHECK(WEXITSTATUS(status) == 0);
+  CHECK(score == 0);
   std::ifstream scores(dir / "scores.csv");
   std::size_t lines = 0;
   for (std::string line; std::getline(scores, line);) ++lines;
