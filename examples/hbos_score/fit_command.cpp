@@ -100,9 +100,9 @@ PyodParams pyod_params(const FitOptions& o) {
 /// Whether the default-mode fit streams: a CSV file that can be read twice (not standard input,
 /// not .npy, which is read whole anyway), bins that need only each feature's range and the row
 /// count (hbos/merge.hpp: equal or fixed width with a fixed, sqrt or Sturges count), and a file
-/// long for its width. The sharded plan holds a histogram per feature (about 1 KiB with its
-/// summaries) whatever the rows, the in-memory fit 8 bytes a value but one histogram at a time:
-/// a file of 2 rows x 1e7 columns is cheaper in memory (a 20 GB plan against 160 MB of values).
+/// long for its width. The sharded plan holds a histogram per feature (about 2 KB with its
+/// summaries) whatever the rows, the in-memory fit 8 bytes a value: a file of 2 rows x 1e7
+/// columns is cheaper read whole (the plan passed 18 GB; the values are 160 MB).
 bool streamable(const FitOptions& o, const HbosParams& params, const CsvOptions& csv) {
   // The CLI gives every feature the same spec, so one feature stands for all.
   if (o.input == "-" || is_npy_path(o.input) || !mergeable(params, 1)) return false;
@@ -183,8 +183,11 @@ int fit_command(int argc, char** argv) {
     if (o.no_header) csv.header = HeaderMode::Absent;
     csv.label_column = o.label_column;
     Eigen::Index rows = 0, cols = 0;
-    if (o.mode == "default" && streamable(o, default_params(o), csv)) {
-      const Hbosd model = fit_streaming(o.input, csv, default_params(o));
+    // The default mode's parameters (not parsed in the PyOD mode, whose --bins may be "auto").
+    const std::optional<HbosParams> params =
+        o.mode == "default" ? std::optional<HbosParams>(default_params(o)) : std::nullopt;
+    if (params && streamable(o, *params, csv)) {
+      const Hbosd model = fit_streaming(o.input, csv, *params);
       rows = model.n_samples();
       cols = model.n_features();
       save_model(model, o.output);
@@ -195,7 +198,7 @@ int fit_command(int argc, char** argv) {
       if (o.mode == "pyod") {
         save_model(PyodHbosd::fit(x, pyod_params(o)), o.output);
       } else {
-        save_model(Hbosd::fit(x, default_params(o)), o.output);
+        save_model(Hbosd::fit(x, *params), o.output);
       }
     }
     std::fprintf(stderr, "hbos-score fit: %s model of %lld rows x %lld features written to %s\n",

@@ -137,11 +137,14 @@ NpyArray read_npy(const std::string& path) {
   return out;
 }
 
-Eigen::MatrixXd read_data_matrix(const std::string& path, const CsvOptions& csv) {
+bool is_npy_path(const std::string& path) {
   constexpr std::string_view suffix = ".npy";
-  if (path.size() >= suffix.size() &&
-      path.compare(path.size() - suffix.size(), suffix.size(), suffix) == 0)
-    return read_npy(path).values;
+  return path.size() >= suffix.size() &&
+         path.compare(path.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+Eigen::MatrixXd read_data_matrix(const std::string& path, const CsvOptions& csv) {
+  if (is_npy_path(path)) return read_npy(path).values;
   return read_csv(path, csv).features;
 }
 

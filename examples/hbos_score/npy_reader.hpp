@@ -32,6 +32,9 @@ struct NpyArray {
 /// Reads the .npy file at `path`. \throws NpyError naming the file and what is wrong.
 [[nodiscard]] NpyArray read_npy(const std::string& path);
 
+/// Whether `path` names a `.npy` file (by its suffix): how read_data_matrix decides.
+[[nodiscard]] bool is_npy_path(const std::string& path);
+
 /// The feature matrix of `path`: read_npy for a `.npy` file, else CSV read with `csv` (features
 /// only: a label column or ignored columns are dropped). \throws NpyError or CsvError.
 [[nodiscard]] Eigen::MatrixXd read_data_matrix(const std::string& path, const CsvOptions& csv);

@@ -1,7 +1,6 @@
 #include "row_blocks.hpp"
 
 #include <algorithm>
-#include <string_view>
 #include <vector>
 
 #include "npy_reader.hpp"
@@ -12,12 +11,6 @@ Eigen::Index rows_per_block(Eigen::Index features) {
   constexpr Eigen::Index kMaxRows = 65536;
   constexpr Eigen::Index kMaxValues = Eigen::Index{1} << 20;  // 8 MiB of doubles
   return std::clamp<Eigen::Index>(kMaxValues / std::max<Eigen::Index>(features, 1), 1, kMaxRows);
-}
-
-bool is_npy_path(const std::string& path) {
-  constexpr std::string_view suffix = ".npy";
-  return path.size() >= suffix.size() &&
-         path.compare(path.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
 Eigen::Index csv_feature_count(const std::string& path, const CsvOptions& csv) {

@@ -30,7 +30,4 @@ void for_each_row_block(const std::string& path, const CsvOptions& csv,
 /// The feature count of the CSV file `path` (its first line, read alone). \throws as read_csv.
 [[nodiscard]] Eigen::Index csv_feature_count(const std::string& path, const CsvOptions& csv);
 
-/// Whether `path` names a `.npy` file (by its suffix, as read_data_matrix decides).
-[[nodiscard]] bool is_npy_path(const std::string& path);
-
 }  // namespace hbos::cli

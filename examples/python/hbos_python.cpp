@@ -46,9 +46,8 @@ Strided as_matrix(const Array& x) {
       Eigen::Stride<Eigen::Dynamic, Eigen::Dynamic>(col_stride / size, row_stride / size));
 }
 
-/// A fresh 1-D numpy array of n doubles, and a view of it the C++ core writes into: scores go
-/// straight into the array that Python gets, with no copy.
-py::array_t<double> new_scores(Eigen::Index n) { return py::array_t<double>(n); }
+/// A view of a 1-D numpy array that the C++ core writes into: scores go straight into the array
+/// that Python gets, with no copy.
 Eigen::Map<Eigen::VectorXd> as_vector(py::array_t<double>& a) {
   return {a.mutable_data(), static_cast<Eigen::Index>(a.size())};
 }
@@ -79,7 +78,7 @@ hbos::HbosParams default_params(const std::string& bins, Eigen::Index shifts) {
 DefaultModel fit_default(const Array& x, const std::string& bins, Eigen::Index shifts) {
   const hbos::HbosParams params = default_params(bins, shifts);
   const Strided m = as_matrix(x);
-  py::array_t<double> scores = new_scores(m.rows());
+  py::array_t<double> scores = py::array_t<double>(m.rows());
   Eigen::Map<Eigen::VectorXd> out = as_vector(scores);
   std::optional<hbos::Hbosd> model;
   {
@@ -161,7 +160,7 @@ PYBIND11_MODULE(_hbos, m) {
       .def("decision_function",
            [](const DefaultModel& self, const Array& x) {
              const Strided mx = as_matrix(x);
-             py::array_t<double> scores = new_scores(mx.rows());
+             py::array_t<double> scores = py::array_t<double>(mx.rows());
              Eigen::Map<Eigen::VectorXd> out = as_vector(scores);
              {
                py::gil_scoped_release release;

@@ -23,6 +23,15 @@
 
 namespace hbos::detail {
 
+#ifdef HBOS_DETAIL_BYTE_BINS_SSE2
+/// Stores 16 bin indices, given as four vectors of four int32 (each below 256), as 16 bytes:
+/// saturating packs to int16 and then to uint8, exact for such values.
+inline void store_16_bins(__m128i q0, __m128i q1, __m128i q2, __m128i q3, std::uint8_t* b) {
+  const __m128i lo8 = _mm_packs_epi32(q0, q1), hi8 = _mm_packs_epi32(q2, q3);
+  _mm_storeu_si128(reinterpret_cast<__m128i*>(b), _mm_packus_epi16(lo8, hi8));
+}
+#endif
+
 /// b[i] = min(trunc((x[i] - lo) * inv), last) for the contiguous x[0, m), each x[i] >= lo, where
 /// last is an integer below 256: the bin of uniform_bin (histogram.hpp), computed the same way.
 template <class Scalar>
@@ -37,22 +46,16 @@ void uniform_byte_bins(const Scalar* x, std::size_t m, Scalar lo, Scalar inv, Sc
       const __m128d u1 = _mm_min_pd(_mm_mul_pd(_mm_sub_pd(_mm_loadu_pd(p + 2), vlo), vinv), vlast);
       return _mm_unpacklo_epi64(_mm_cvttpd_epi32(u0), _mm_cvttpd_epi32(u1));
     };
-    for (; m - i >= 16; i += 16) {
-      const __m128i lo8 = _mm_packs_epi32(four(x + i), four(x + i + 4));
-      const __m128i hi8 = _mm_packs_epi32(four(x + i + 8), four(x + i + 12));
-      _mm_storeu_si128(reinterpret_cast<__m128i*>(b + i), _mm_packus_epi16(lo8, hi8));
-    }
+    for (; m - i >= 16; i += 16)
+      store_16_bins(four(x + i), four(x + i + 4), four(x + i + 8), four(x + i + 12), b + i);
   } else if constexpr (std::is_same_v<Scalar, float>) {
     const __m128 vlo = _mm_set1_ps(lo), vinv = _mm_set1_ps(inv), vlast = _mm_set1_ps(last);
     auto four = [&](const float* p) {
       return _mm_cvttps_epi32(
           _mm_min_ps(_mm_mul_ps(_mm_sub_ps(_mm_loadu_ps(p), vlo), vinv), vlast));
     };
-    for (; m - i >= 16; i += 16) {
-      const __m128i lo8 = _mm_packs_epi32(four(x + i), four(x + i + 4));
-      const __m128i hi8 = _mm_packs_epi32(four(x + i + 8), four(x + i + 12));
-      _mm_storeu_si128(reinterpret_cast<__m128i*>(b + i), _mm_packus_epi16(lo8, hi8));
-    }
+    for (; m - i >= 16; i += 16)
+      store_16_bins(four(x + i), four(x + i + 4), four(x + i + 8), four(x + i + 12), b + i);
   }
 #endif
   for (; i < m; ++i) {
