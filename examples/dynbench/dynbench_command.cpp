@@ -154,10 +154,21 @@ int run_grid(const BenchSettings& settings, std::ostream& out, std::ostream& err
             fmt::format("running {} s{} mask {} screen {}", c.scenario, c.seed, c.mask, c.screen));
         results[i] = run_cell(settings, c, dir, expected[i], StopOnSignal::flag());
         if (results[i]) bar.advance(cell_line(c, *results[i]));
+      } catch (const std::exception& e) {
+        // Named by its cell, so the failure can be re-run alone; bad input keeps exit status 2.
+        const std::string where = fmt::format("cell {} seed {} mask {} screen {}: {}", c.scenario,
+                                              c.seed, c.mask, c.screen, e.what());
+        const std::lock_guard<std::mutex> lock(error_mutex);
+        if (!first_error) {
+          first_error = dynamic_cast<const InvalidArgument*>(&e) != nullptr
+                            ? std::make_exception_ptr(InvalidArgument(where))
+                            : std::make_exception_ptr(std::runtime_error(where));
+        }
+        StopOnSignal::request();  // the other jobs stop too
       } catch (...) {
         const std::lock_guard<std::mutex> lock(error_mutex);
         if (!first_error) first_error = std::current_exception();
-        StopOnSignal::request();  // the other jobs stop too
+        StopOnSignal::request();
       }
     }
   };

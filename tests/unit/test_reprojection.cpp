@@ -7,6 +7,7 @@
 #include <hbos/screening.hpp>
 
 #include <cmath>
+#include <random>
 #include <string>
 
 #include "../support/synthetic_scene.hpp"
@@ -237,6 +238,57 @@ TEST_CASE("chi-square gate whitens by sigma and uses 3 dof for stereo matches",
   CHECK(r.score(0) == Approx(2.44 * 2.44));
   CHECK(r.n_inliers() == 2);
   CHECK(r.n_outliers() == 2);
+}
+
+TEST_CASE("gates: score, magnitude and contribution follow their definitions, mono and stereo",
+          "[reprojection][baseline]") {
+  // The gates derive the magnitude and the one contribution from the score on demand: the
+  // accessors must still give |r| [px], |r| / sigma, chi^2 = |r|^2 / sigma^2 (as ORB-SLAM2:
+  // e^2 * invSigma2), match for match, with and without stereo matches in the frame.
+  std::mt19937 rng(7);
+  std::normal_distribution<double> noise(0.0, 2.0);
+  for (const bool with_stereo : {false, true}) {
+    hbos::Matchesd m;
+    for (int i = 0; i < 200; ++i) {
+      const double s = hbos::sigma_from_octave(i % 8);
+      const Vec2 p(noise(rng), noise(rng));
+      const Vec2 o(noise(rng), noise(rng));
+      if (with_stereo && i % 3 == 0) {
+        m.add_stereo(p, o, 0.0, noise(rng), s);
+      } else {
+        m.add(p, o, s, i % 11 == 0);
+      }
+    }
+    CAPTURE(with_stereo);
+    for (const hbos::ScreenStrategy& strategy :
+         {hbos::ScreenStrategy{hbos::ChiSquareGate{}}, hbos::ScreenStrategy{hbos::FixedPixelGate{}},
+          hbos::ScreenStrategy{hbos::QuantileGate{}}, hbos::ScreenStrategy{hbos::MadGate{}}}) {
+      hbos::ReprojectionScreend screen(strategy);
+      const auto& r = screen.screen(m);
+      const std::string name = hbos::strategy_name(strategy);
+      CAPTURE(name);
+      REQUIRE(r.n_features() == 1);
+      const auto c = r.contributions();
+      REQUIRE(c.rows() == m.size());
+      const bool chi = name == "chi2";
+      const bool whiten = chi || std::string(r.magnitude_unit()) == "px/sigma";
+      for (Eigen::Index i = 0; i < m.size(); ++i) {
+        const double e2 = m.squared_residual(i);
+        const double w = whiten ? m.information(i) : 1.0;
+        const double magnitude = std::sqrt(e2 * w);
+        CHECK(r.magnitude(i) == Approx(magnitude).epsilon(1e-14));
+        CHECK(c(i, 0) == r.score(i));
+        if (chi) {
+          const hbos::ChiSquareGate gate;
+          const double ratio = m.has_right(i) ? gate.chi2_mono / gate.chi2_stereo : 1.0;
+          CHECK(r.score(i) == Approx(e2 * m.information(i) * ratio).epsilon(1e-14));
+        } else {
+          CHECK(r.score(i) == r.magnitude(i));
+        }
+        if (!m.on_dynamic_mask(i)) CHECK(r.inlier(i) == (r.score(i) <= r.threshold()));
+      }
+    }
+  }
 }
 
 TEST_CASE("quantile gate: the 0.8 quantile of unflagged residuals, applied to all",

@@ -87,6 +87,45 @@ TEST_CASE("defect: a crowd of gross mismatches at magnitude_clip is rejected, no
   }
 }
 
+TEST_CASE("defect: fired matches are charged by the static matches' magnitude histogram",
+          "[screen_v2][defect]") {
+  // Found by hbos-dynbench (walking_xyz, seed 1, no mask): the magnitude histogram was fitted on
+  // a buffer the evidence histograms had already overwritten with their own values, so fired
+  // matches were charged against the statics' coherence instead of their magnitudes. On a
+  // rendered frame's tiny noise (s ~ 0.005 px/sigma) a static match beside a coherent object
+  // has a coherence of -3e4, and that fit needed 1.3e5 bins and threw.
+  hbos::Matchesd m = static_matches(600, 0.005, 11);
+  const Eigen::Index n_static = m.size();
+  add_object(m, 40, Vec2(2.2, 0.0), 0.005, 420.0, 300.0, 100.0, 100.0, 2.0, 13);  // inside the gate
+  hbos::ReprojectionScreend screen(hbos::HbosScreen{});
+  const hbos::ScreenResult<double>* r = nullptr;
+  REQUIRE_NOTHROW(r = &screen.screen(m));
+  CHECK(r->scores().allFinite());
+  CHECK(rejected_share(*r, n_static, m.size()) == 1.0);
+  CHECK(rejected_share(*r, 0, n_static) < 0.05);
+  CHECK(r->n_rejected_by_evidence() == 40);
+  // Every match charged on evidence: its magnitude's contribution is what a histogram of the
+  // matches that look static (kept, nothing fired: every contribution 0) gives its magnitude.
+  std::vector<double> static_magnitudes;
+  const auto c = r->contributions();
+  for (Eigen::Index i = 0; i < m.size(); ++i)
+    if (r->inlier(i) && (c.row(i).array() == 0.0).all() && r->magnitude(i) <= r->magnitude_cut())
+      static_magnitudes.push_back(r->magnitude(i));
+  REQUIRE(static_magnitudes.size() > 500);
+  hbos::Histogram<double> reference;
+  std::vector<double> scratch;
+  const Eigen::Map<const Eigen::VectorXd> column(
+      static_magnitudes.data(), static_cast<Eigen::Index>(static_magnitudes.size()));
+  reference.refit(column, hbos::HbosScreen{}.magnitude, hbos::ScoringOptions{}, scratch);
+  Eigen::Index charged = 0;
+  for (Eigen::Index i = 0; i < m.size(); ++i) {
+    if ((c.row(i).tail(3).array() == 0.0).all()) continue;
+    ++charged;
+    CHECK(c(i, 0) == reference.contribution(r->magnitude(i)));
+  }
+  CHECK(charged > 0);
+}
+
 TEST_CASE("the noise gate follows the frame's noise and never closes below chi^2's gate",
           "[screen_v2][gate][property]") {
   for (const double s : {0.1, 0.3, 0.5, 1.0, 2.0, 4.0}) {

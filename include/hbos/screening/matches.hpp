@@ -61,11 +61,13 @@ class Matches {
     predicted_right_.clear();
     observed_right_.clear();
     sigma_.clear();
+    information_.clear();
     flag_.clear();
     depth_.clear();
     mask_distance_.clear();
     history_.clear();
     n_stereo_ = 0;
+    n_flagged_ = 0;
   }
 
   /// Reserves storage for `n` matches.
@@ -79,6 +81,7 @@ class Matches {
     predicted_right_.reserve(k);
     observed_right_.reserve(k);
     sigma_.reserve(k);
+    information_.reserve(k);
     flag_.reserve(k);
     depth_.reserve(k);
     mask_distance_.reserve(k);
@@ -154,6 +157,8 @@ class Matches {
   [[nodiscard]] bool empty() const { return sigma_.empty(); }
   /// Number of matches added with add_stereo.
   [[nodiscard]] Index stereo_count() const { return n_stereo_; }
+  /// Number of matches flagged on a dynamic mask.
+  [[nodiscard]] Index flagged_count() const { return n_flagged_; }
 
   [[nodiscard]] Vector2 predicted(Index i) const {
     const auto k = static_cast<std::size_t>(i);
@@ -178,6 +183,10 @@ class Matches {
     return has_right(i) ? observed_right_[k] - predicted_right_[k] : Scalar(0);
   }
   [[nodiscard]] Scalar sigma(Index i) const { return sigma_[static_cast<std::size_t>(i)]; }
+  /// The information 1 / sigma_i^2 of match i (ORB-SLAM2's invSigma2 of its level).
+  [[nodiscard]] Scalar information(Index i) const {
+    return information_[static_cast<std::size_t>(i)];
+  }
   [[nodiscard]] bool on_dynamic_mask(Index i) const {
     return flag_[static_cast<std::size_t>(i)] != 0;
   }
@@ -218,7 +227,11 @@ class Matches {
     predicted_right_.push_back(predicted_right);
     observed_right_.push_back(observed_right);
     sigma_.push_back(sigma);
+    // Kept per match, as ORB-SLAM2 keeps invSigma2 per level: the gates then multiply instead of
+    // dividing, once per screening round.
+    information_.push_back(Scalar(1) / s2);
     flag_.push_back(flag ? 1 : 0);
+    n_flagged_ += flag ? 1 : 0;
     const Scalar unknown = std::numeric_limits<Scalar>::quiet_NaN();
     depth_.push_back(unknown);
     mask_distance_.push_back(unknown);
@@ -231,9 +244,11 @@ class Matches {
   std::vector<Scalar> predicted_x_, predicted_y_, observed_x_, observed_y_;
   std::vector<Scalar> predicted_right_, observed_right_;  // NaN for monocular matches
   std::vector<Scalar> sigma_;
+  std::vector<Scalar> information_;  // 1 / sigma^2
   std::vector<std::uint8_t> flag_;
   std::vector<Scalar> depth_, mask_distance_, history_;  // NaN = not set
   Index n_stereo_ = 0;
+  Index n_flagged_ = 0;
 };
 
 using Matchesd = Matches<double>;

@@ -93,11 +93,24 @@ class ScreenResult {
   /// The residual feature the decision was made on: the (centered, whitened) magnitude for HBOS,
   /// MAD and whitened quantile gates, |r| [px] for the fixed and quantile gates, |r|/sigma for
   /// chi^2.
-  [[nodiscard]] Scalar magnitude(Index i) const { return magnitude_[static_cast<std::size_t>(i)]; }
+  [[nodiscard]] Scalar magnitude(Index i) const {
+    const auto k = static_cast<std::size_t>(i);
+    switch (magnitude_source_) {
+      case MagnitudeSource::Score:
+        return score_[k];
+      case MagnitudeSource::SqrtScore:
+        return std::sqrt(score_[k]);
+      case MagnitudeSource::Stored:
+        break;
+    }
+    return magnitude_[k];
+  }
   /// Per-feature contributions, n x n_features(); rows sum to the scores (HBOS), or the one
   /// column is the score itself (baselines).
   [[nodiscard]] MatrixMap contributions() const {
-    return MatrixMap(contribution_.data(), n_, n_features_);
+    return MatrixMap(
+        n_features_ == 1 && contribution_is_score_ ? score_.data() : contribution_.data(), n_,
+        n_features_);
   }
   [[nodiscard]] Index n_features() const { return n_features_; }
   /// "magnitude", "angle", "coherence", "mask", "history", or the baseline's statistic name.
@@ -118,6 +131,12 @@ class ScreenResult {
 
  private:
   friend class ReprojectionScreen<Scalar>;
+  // The gates derive the magnitude and the one contribution from the score on demand, so a
+  // round writes one column instead of three (the square root of chi^2 alone was a quarter of
+  // its time).
+  enum class MagnitudeSource : std::uint8_t { Stored, Score, SqrtScore };
+  MagnitudeSource magnitude_source_ = MagnitudeSource::Stored;
+  bool contribution_is_score_ = false;
   Index n_ = 0;
   Index n_features_ = 0;
   std::vector<Scalar> score_, magnitude_, contribution_, coherence_;
@@ -216,6 +235,7 @@ class ReprojectionScreen {
   void run_gated(const Matches<Scalar>& matches, const HbosScreen& s);
   void run_gate(const Matches<Scalar>& matches);
   void finish(const Matches<Scalar>& matches, Scalar floor);
+  void finish(const Matches<Scalar>& matches, Scalar floor, const Scalar* magnitude);
   template <class Use>
   void fit_field(const Matches<Scalar>& matches, const HbosScreen& s, const Use& use, double window,
                  ResidualCenter center);
@@ -279,14 +299,15 @@ void ReprojectionScreen<Scalar>::prepare(const Matches<Scalar>& matches, Index n
   r.magnitude_.resize(k);
   r.inlier_.resize(k);
   r.contribution_.resize(k * static_cast<std::size_t>(n_features));
+  r.magnitude_source_ = ScreenResult<Scalar>::MagnitudeSource::Stored;
+  r.contribution_is_score_ = false;
   fit_values_.resize(k);
   r.field_ = ResidualField<Scalar>{};
   r.magnitude_cut_ = r.noise_scale_ = std::numeric_limits<Scalar>::quiet_NaN();
   r.n_evidence_ = 0;
   r.coherence_.clear();
 
-  Index flagged = 0;
-  for (Index i = 0; i < n; ++i) flagged += matches.on_dynamic_mask(i) ? 1 : 0;
+  const Index flagged = matches.flagged_count();
   r.n_flagged_ = flagged;
   fit_unflagged_only_ = config_.flagged != FlaggedPolicy::Ignore && flagged > 0 &&
                         n - flagged >= config_.min_fit_matches;
@@ -585,10 +606,17 @@ void ReprojectionScreen<Scalar>::run_gated(const Matches<Scalar>& matches, const
     spec.tail = Tail::Upper;
     return spec;
   }();
+  // The magnitude first: `static_magnitudes` lives in fit_values_, which each charge below
+  // overwrites with its own feature's values.
+  if (have_static) {
+    magnitude_hist_.refit(static_magnitudes, s.magnitude, s.scoring, scratch_, 0);
+    for (std::size_t k = 0; k < un; ++k)
+      if (fired_[k]) r.contribution_[k] = magnitude_hist_.contribution(r.magnitude_[k]);
+  }
   // A fired feature without a static population to compare with scores above any cut.
   const Scalar no_reference = t + Scalar(1);
   auto charge = [&](Index feature, const std::vector<Scalar>& values, std::uint8_t bit,
-                    double width) {
+                    double width, Scalar floor) {
     Scalar* out = r.contribution_.data() + feature * n;
     bool any = false;
     for (const std::uint8_t f : fired_) any = any || (f & bit) != 0;
@@ -601,18 +629,22 @@ void ReprojectionScreen<Scalar>::run_gated(const Matches<Scalar>& matches, const
     FeatureSpec spec = evidence_spec;
     spec.binning.width = width;
     const Column reference = select(matches, values, on_static);
+    // Only the upper tail is scored, so how far below the floor a static match's evidence lies
+    // carries nothing; counted at the floor, the bins stay bounded (a coherence of -3e4, a
+    // static match beside a cluster of gross mismatches, once needed 1.3e5 bins and threw).
+    for (Index i = 0; i < reference.size(); ++i) {
+      Scalar& v = fit_values_[static_cast<std::size_t>(i)];
+      v = std::max(v, floor);
+    }
     evidence_hist_.refit(reference, spec, s.scoring, scratch_, feature);
     for (std::size_t k = 0; k < un; ++k)
       if (fired_[k] & bit) out[k] = evidence_hist_.contribution(values[k]);
   };
-  charge(1, coherence_, 1, 0.5);
-  charge(2, proximity_, 2, 0.1);
-  charge(3, history_, 4, 0.1);
-  if (have_static) {
-    magnitude_hist_.refit(static_magnitudes, s.magnitude, s.scoring, scratch_, 0);
-    for (std::size_t k = 0; k < un; ++k)
-      if (fired_[k]) r.contribution_[k] = magnitude_hist_.contribution(r.magnitude_[k]);
-  }
+  // Coherence is a log-likelihood ratio: below -64 (odds of e^64 for the background) every value
+  // says the same. Proximity and history lie in [0, 1].
+  charge(1, coherence_, 1, 0.5, Scalar(-64));
+  charge(2, proximity_, 2, 0.1, Scalar(0));
+  charge(3, history_, 4, 0.1, Scalar(0));
 
   // 7. Decision statistic: max(t m / G, E); the cut t.
   Index by_evidence = 0;
@@ -660,23 +692,31 @@ void ReprojectionScreen<Scalar>::run_gate(const Matches<Scalar>& matches) {
   r.magnitude_unit_ = stat.whiten ? "px/sigma" : "px";
   r.unit_ = stat.squared ? "px^2/sigma^2" : r.magnitude_unit_;
 
-  // The statistic over whole columns (Eigen arrays: SIMD division and square root; a scalar
-  // std::sqrt loop keeps its errno branch and does not vectorise). Stereo components are added
-  // in a second pass that frames without stereo matches skip.
+  // The statistic over whole columns (Eigen arrays: SIMD arithmetic; a scalar std::sqrt loop
+  // keeps its errno branch and does not vectorise), weighted by the information 1/sigma^2 the
+  // matches keep (a multiply, not a division). Stereo components are added in a second pass
+  // that frames without stereo matches skip.
   const auto* chi = std::get_if<ChiSquareGate>(&strategy);
   using Array = Eigen::Array<Scalar, Eigen::Dynamic, 1>;
+  using Source = typename ScreenResult<Scalar>::MagnitudeSource;
   const Eigen::Map<const Array> px(matches.predicted_x_.data(), n);
   const Eigen::Map<const Array> py(matches.predicted_y_.data(), n);
   const Eigen::Map<const Array> ox(matches.observed_x_.data(), n);
   const Eigen::Map<const Array> oy(matches.observed_y_.data(), n);
-  const Eigen::Map<const Array> sigma(matches.sigma_.data(), n);
+  const Eigen::Map<const Array> information(matches.information_.data(), n);
   Eigen::Map<Array> score(r.score_.data(), n), magnitude(r.magnitude_.data(), n);
-  score = (ox - px).square() + (oy - py).square();  // e^2 [px^2]
-  if (matches.stereo_count() > 0) {
-    for (Index i = 0; i < n; ++i) {
-      const Scalar right = matches.right_residual(i);  // 0 without a stereo component
-      score(i) += right * right;
+  const bool stereo = matches.stereo_count() > 0;
+  if (stat.whiten && !stereo) {
+    score = ((ox - px).square() + (oy - py).square()) * information;  // e^2 / sigma^2
+  } else {
+    score = (ox - px).square() + (oy - py).square();  // e^2 [px^2]
+    if (stereo) {
+      for (Index i = 0; i < n; ++i) {
+        const Scalar right = matches.right_residual(i);  // 0 without a stereo component
+        score(i) += right * right;
+      }
     }
+    if (stat.whiten) score *= information;
   }
   // Eigen's float square root is an approximation under EIGEN_FAST_MATH (rsqrt and a Newton
   // step: not correctly rounded, and NaN at inf); double's is the exact sqrtpd.
@@ -689,20 +729,22 @@ void ReprojectionScreen<Scalar>::run_gate(const Matches<Scalar>& matches) {
     }
   };
   if (chi != nullptr) {
-    score /= sigma.square();
-    sqrt_into(magnitude, score);
-    if (matches.stereo_count() > 0) {
+    // The magnitude |r|/sigma is sqrt(chi^2): taken on demand, unless stereo matches' chi^2 is
+    // rescaled below (then it is stored first).
+    r.magnitude_source_ = Source::SqrtScore;
+    if (stereo) {
+      sqrt_into(magnitude, score);
+      r.magnitude_source_ = Source::Stored;
       // One threshold for mixed frames: a stereo match's chi^2 is rescaled to the 2-dof gate.
       const auto ratio = static_cast<Scalar>(chi->chi2_mono / chi->chi2_stereo);
       for (Index i = 0; i < n; ++i)
         if (matches.has_right(i) && std::isfinite(score(i))) score(i) *= ratio;  // inf stays inf
     }
   } else {
-    if (stat.whiten) score /= sigma.square();
     sqrt_into(score, score);
-    magnitude = score;
+    r.magnitude_source_ = Source::Score;
   }
-  std::copy(r.score_.begin(), r.score_.begin() + n, r.contribution_.begin());
+  r.contribution_is_score_ = true;
 
   if (const auto* g = std::get_if<FixedPixelGate>(&strategy)) {
     r.threshold_ = static_cast<Scalar>(g->max_px);
@@ -723,11 +765,21 @@ void ReprojectionScreen<Scalar>::run_gate(const Matches<Scalar>& matches) {
                                       : compute_threshold(column, MedianMad{mad.k, true}, scratch_);
   }
   r.magnitude_cut_ = chi != nullptr ? std::sqrt(r.threshold_) : r.threshold_;
-  finish(matches, Scalar(0));
+  finish(matches, Scalar(0),
+         r.magnitude_source_ == Source::Stored ? r.magnitude_.data() : r.score_.data());
 }
 
 template <class Scalar>
 void ReprojectionScreen<Scalar>::finish(const Matches<Scalar>& matches, Scalar floor) {
+  finish(matches, floor, result_.magnitude_.data());
+}
+
+/// The decisions from the scores and `magnitude` (the stored magnitudes, or any column with the
+/// same finiteness and the same sign against `floor`: the score itself for chi^2, whose square
+/// root is the magnitude).
+template <class Scalar>
+void ReprojectionScreen<Scalar>::finish(const Matches<Scalar>& matches, Scalar floor,
+                                        const Scalar* magnitude) {
   ScreenResult<Scalar>& r = result_;
   const bool reject_flagged = config_.flagged == FlaggedPolicy::Reject;
   const Scalar threshold = r.threshold_;
@@ -736,7 +788,6 @@ void ReprojectionScreen<Scalar>::finish(const Matches<Scalar>& matches, Scalar f
   // were 40 % of a gate's time).
   const std::uint8_t* flag = matches.flag_.data();
   const Scalar* score = r.score_.data();
-  const Scalar* magnitude = r.magnitude_.data();
   std::uint8_t* inlier = r.inlier_.data();
   const auto n = static_cast<std::size_t>(matches.size());
   Index kept = 0, floor_kept = 0, flagged_rejected = 0;
