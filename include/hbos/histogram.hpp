@@ -204,6 +204,53 @@ class Histogram {
     return refit_view(view, spec, options, scratch, feature, bin_index);
   }
 
+  /// Whether `spec` bins from its range alone (equal or fixed width, a fixed bin count, not
+  /// periodic): what a staged fit needs, and all it reads of the data.
+  [[nodiscard]] static bool fits_from_range(const FeatureSpec& spec) {
+    const Binning& b = spec.binning;
+    return !spec.periodic &&
+           (b.method == BinningMethod::FixedWidth ||
+            (b.method == BinningMethod::EqualWidth && b.rule == BinCountRule::Fixed));
+  }
+
+  /// The staged form of `refit` for specs with fits_from_range(): `begin_staged_fit` places the
+  /// edges from the column's known finite range [lo, hi] (the ones refit would place), then
+  /// `count_more` counts any split of the column into consecutive parts (recording bin indices
+  /// like refit when the first call said it may), then `end_staged_fit` scores the bins of the n
+  /// values counted. The result is bitwise refit's. Row-major fits use it to count every feature
+  /// per block of rows, reading the matrix once instead of once per feature.
+  /// \returns whether BinIndex can hold every bin index (so count_more may record them).
+  template <class BinIndex>
+  bool begin_staged_fit(Scalar lo, Scalar hi, const FeatureSpec& spec,
+                        const ScoringOptions& options, std::vector<Scalar>& scratch,
+                        Index feature) {
+    detail::validate(spec, feature);
+    detail::validate_for_scalar<Scalar>(spec, feature);
+    detail::validate(options);
+    detail::require(fits_from_range(spec), "feature ", feature,
+                    ": a staged fit needs equal-width bins of a fixed count or fixed-width bins, "
+                    "not periodic");
+    periodic_ = false;
+    tail_ = spec.tail;
+    layout_.period = 0;
+    shifts_ = spec.binning.shifts;
+    uniform_ = true;
+    // Equal- and fixed-width placement reads only the extremes (as ShardedFit relies on).
+    const std::array<Scalar, 2> extremes{lo, hi};
+    detail::place_uniform_edges(detail::ColumnView<Scalar>{extremes.data(), 2, 1}, spec, shifts_,
+                                scratch, rule_scratch_, feature, layout_);
+    counts_.assign(layout_.edges.size() - 1, 0);
+    return layout_.edges.size() - 2 <=
+           static_cast<std::size_t>(std::numeric_limits<BinIndex>::max());
+  }
+  /// Counts the next consecutive part of the column (every value finite, within [lo, hi]).
+  template <class BinIndex>
+  void count_more(const detail::ColumnView<Scalar>& part, BinIndex* bin_index) {
+    accumulate_counts(part, bin_index);
+  }
+  /// Scores the bins once all `n` values have been counted.
+  void end_staged_fit(Index n, const ScoringOptions& options) { score_bins(n, options); }
+
  private:
   template <class BinIndex>
   bool refit_view(const detail::ColumnView<Scalar>& x, const FeatureSpec& spec,
@@ -241,7 +288,13 @@ class Histogram {
   }
 
   template <class BinIndex = std::uint32_t>
-  void count(const detail::ColumnView<Scalar>& x, BinIndex* bin_index = nullptr);
+  void count(const detail::ColumnView<Scalar>& x, BinIndex* bin_index = nullptr) {
+    counts_.assign(layout_.edges.size() - 1, 0);
+    accumulate_counts(x, bin_index);
+  }
+  /// Adds the counts of `x` to counts_ (sized to the bins), recording each value's bin.
+  template <class BinIndex = std::uint32_t>
+  void accumulate_counts(const detail::ColumnView<Scalar>& x, BinIndex* bin_index);
   void smooth_counts();
   void score_bins(Index n, const ScoringOptions& options);
 
@@ -320,10 +373,10 @@ void Histogram<Scalar>::contributions_into(const detail::ColumnView<Scalar>& x, 
 
 template <class Scalar>
 template <class BinIndex>
-void Histogram<Scalar>::count(const detail::ColumnView<Scalar>& x, BinIndex* bin_index) {
+void Histogram<Scalar>::accumulate_counts(const detail::ColumnView<Scalar>& x,
+                                          BinIndex* bin_index) {
   const Index n = x.size;
   const auto k = static_cast<std::size_t>(layout_.edges.size() - 1);
-  counts_.assign(k, 0);
   if (periodic_) {
     // Periodic values arrive as offsets wrap(x) into the period: exactly what lookup computes.
     for (Index i = 0; i < n; ++i) ++counts_[static_cast<std::size_t>(uniform_bin(x[i]))];
@@ -379,7 +432,7 @@ void Histogram<Scalar>::count(const detail::ColumnView<Scalar>& x, BinIndex* bin
         }
       }
     });
-    for (std::size_t j = 0; j < k; ++j) counts_[j] = static_cast<Index>(few[j]);
+    for (std::size_t j = 0; j < k; ++j) counts_[j] += static_cast<Index>(few[j]);
     return;
   }
   // More bins: counted into four interleaved sub-histograms, so that consecutive values in the
@@ -409,7 +462,7 @@ void Histogram<Scalar>::count(const detail::ColumnView<Scalar>& x, BinIndex* bin
     }
   });
   for (std::size_t j = 0; j < k; ++j)
-    counts_[j] = static_cast<Index>(sub[4 * j]) + sub[4 * j + 1] + sub[4 * j + 2] + sub[4 * j + 3];
+    counts_[j] += static_cast<Index>(sub[4 * j]) + sub[4 * j + 1] + sub[4 * j + 2] + sub[4 * j + 3];
 }
 
 template <class Scalar>

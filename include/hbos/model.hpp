@@ -150,7 +150,67 @@ struct FitScoreBuffers {
   std::vector<BinIndex> bin_index;      // n x d, column-major: the bin each value was counted in
   std::vector<unsigned char> recorded;  // per feature: whether its bin indices were recorded
   std::vector<Scalar> pair_table;       // contributions of features 0 and 1 summed, per bin pair
+  std::vector<Scalar> range;            // 2 d: every feature's min, then every feature's max
 };
+
+/// fit_and_score_columns' histograms for data whose rows are contiguous runs (numpy's default C
+/// order, a row-major matrix): a feature's column is strided there, and fitting feature by
+/// feature would read the whole matrix twice per feature. Instead: every feature's range in one
+/// sweep over the rows, then every feature counted per block of rows while the block is in
+/// cache — the matrix is read twice in all, as a column-major one is. Bitwise the histograms
+/// and bin indices of the per-feature fit (the staged fit places the same edges and counts the
+/// same bins). Returns false, having done nothing that matters, when it does not apply: a
+/// feature whose bins need more than its range (fits_from_range), a column-major layout, or a
+/// non-finite value (the per-feature fit then names it).
+template <class Scalar, class Derived, class BinIndex>
+bool fit_rows_at_once(std::vector<Histogram<Scalar>>& histograms,
+                      const Eigen::DenseBase<Derived>& x, const HbosParams& params,
+                      FitScoreBuffers<Scalar, BinIndex>& buffers) {
+  if constexpr ((Derived::Flags & Eigen::DirectAccessBit) == 0) {
+    return false;
+  } else {
+    const Eigen::Index n = x.rows(), d = x.cols();
+    const Derived& m = x.derived();
+    if (d < 2 || m.colStride() != 1 || m.rowStride() < d) return false;
+    for (Eigen::Index j = 0; j < d; ++j)
+      if (!Histogram<Scalar>::fits_from_range(params.spec(j))) return false;
+    const Scalar* data = m.data();
+    const auto ud = static_cast<std::size_t>(d);
+    buffers.range.resize(2 * ud);
+    Scalar* lo = buffers.range.data();
+    Scalar* hi = lo + d;
+    if (!scan_rows_min_max(data, n, d, m.rowStride(), lo, hi)) return false;
+    for (std::size_t j = 0; j < ud; ++j) {
+      const auto feature = static_cast<Eigen::Index>(j);
+      buffers.recorded[j] =
+          histograms[j].template begin_staged_fit<BinIndex>(
+              lo[j], hi[j], params.spec(feature), params.scoring, buffers.scratch, feature)
+              ? 1
+              : 0;
+    }
+    // A block of rows small enough to stay in L2 while each feature takes its column of it;
+    // the whole column at once when a feature has so many bins that clearing its interleaved
+    // counters per block would cost more than the block.
+    Eigen::Index most_bins = 0;
+    for (const auto& h : histograms) most_bins = std::max(most_bins, h.bins());
+    const Eigen::Index block =
+        most_bins > 4096 ? n : std::max<Eigen::Index>(256, (Eigen::Index{1} << 16) / d);
+    const auto un = static_cast<std::size_t>(n);
+    for (Eigen::Index start = 0; start < n; start += block) {
+      const Eigen::Index rows = std::min(block, n - start);
+      for (std::size_t j = 0; j < ud; ++j) {
+        const ColumnView<Scalar> part{data + start * m.rowStride() + static_cast<Eigen::Index>(j),
+                                      rows, m.rowStride()};
+        BinIndex* index = buffers.recorded[j] != 0
+                              ? buffers.bin_index.data() + j * un + static_cast<std::size_t>(start)
+                              : nullptr;
+        histograms[j].count_more(part, index);
+      }
+    }
+    for (auto& h : histograms) h.end_staged_fit(n, params.scoring);
+    return true;
+  }
+}
 
 /// Fits `histograms` to `x` like fit_histograms and scores the training rows in the same sweep:
 /// `scores` (n) and, when not null, `contributions` (column-major n x d). Where a histogram
@@ -172,7 +232,8 @@ void fit_and_score_columns(std::vector<Histogram<Scalar>>& histograms,
   histograms.resize(d);
   buffers.bin_index.resize(n * d);
   buffers.recorded.resize(d);
-  for (std::size_t j = 0; j < d; ++j) {
+  const bool by_rows = fit_rows_at_once(histograms, x, params, buffers);
+  for (std::size_t j = 0; j < d && !by_rows; ++j) {
     const auto feature = static_cast<Eigen::Index>(j);
     buffers.recorded[j] =
         histograms[j].refit(x.derived().col(feature), params.spec(feature), params.scoring,

@@ -229,6 +229,70 @@ TEST_CASE("fit_and_score gives exactly fit + score, in every mode and input form
                     Catch::Contains("X(3, 1) is not finite"));
 }
 
+TEMPLATE_TEST_CASE("row-major data is fitted by rows, bit for bit the column-major fit",
+                   "[model][fit_and_score][row_major]", float, double) {
+  // Row-major data (numpy's C order) takes fit_rows_at_once: ranges in one sweep over the rows,
+  // then every feature counted per block of rows. Its histograms, bin indices and scores must
+  // be the per-feature fit's, for every feature count (the flat packet scan covers d dividing
+  // its step, the row loop the rest), several blocks, padded rows, and every spec it accepts;
+  // specs it refuses must still agree (they take the per-feature path).
+  using Scalar = TestType;
+  using ColMajor = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
+  using RowMajor = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+  using Vector = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
+  auto modes = all_modes();
+  hbos::HbosParams p;
+  p.feature.binning.method = hbos::BinningMethod::FixedWidth;
+  p.feature.binning.width = 0.37;
+  p.feature.binning.shifts = 3;
+  modes.push_back(p);
+  p = {};
+  p.feature.binning.bins = 300;  // more bins than one byte indexes
+  p.feature.binning.shifts = 1;
+  modes.push_back(p);
+  p = {};
+  p.feature.binning.method = hbos::BinningMethod::FixedWidth;
+  p.feature.binning.width = 2e-3;
+  p.feature.binning.shifts = 1;
+  p.feature.binning.max_bins = 1 << 20;
+  modes.push_back(p);  // thousands of bins: counted a whole column at a time
+  for (const Eigen::Index d : {2, 3, 4, 5, 8, 9, 16}) {
+    for (const Eigen::Index n : {Eigen::Index{1}, Eigen::Index{7}, Eigen::Index{333},
+                                 70001 / d + 13}) {  // the last spans several row blocks
+      const ColMajor x = make_data(static_cast<std::uint32_t>(d * 31 + n), n, d).cast<Scalar>();
+      const RowMajor rows = x;
+      // Rows padded to a longer stride, as a slice of a wider C-order array.
+      Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> wide(n, d + 3);
+      wide.setConstant(Scalar(1e30));
+      wide.leftCols(d) = x;
+      const auto padded = wide.leftCols(d);
+      for (std::size_t m = 0; m < modes.size(); ++m) {
+        INFO("d " << d << ", n " << n << ", mode " << m);
+        Vector reference(n), by_rows(n), by_padded_rows(n);
+        const auto model = hbos::Hbos<Scalar>::fit_and_score(x, reference, modes[m]);
+        const auto row_model = hbos::Hbos<Scalar>::fit_and_score(rows, by_rows, modes[m]);
+        const auto padded_model =
+            hbos::Hbos<Scalar>::fit_and_score(padded, by_padded_rows, modes[m]);
+        CHECK(by_rows == reference);
+        CHECK(by_padded_rows == reference);
+        CHECK(reference == model.score(x));
+        for (Eigen::Index j = 0; j < d; ++j) {
+          CHECK(row_model.histogram(j).counts() == model.histogram(j).counts());
+          CHECK(row_model.histogram(j).edges() == model.histogram(j).edges());
+          CHECK(padded_model.histogram(j).counts() == model.histogram(j).counts());
+        }
+      }
+    }
+  }
+  SECTION("a non-finite value is named as in the per-feature fit") {
+    RowMajor rows = make_data(3, 500, 2).cast<Scalar>();
+    rows(417, 1) = std::numeric_limits<Scalar>::infinity();
+    Vector out(500);
+    CHECK_THROWS_WITH(hbos::Hbos<Scalar>::fit_and_score(rows, out),
+                      Catch::Contains("X(417, 1) is not finite"));
+  }
+}
+
 TEST_CASE("one fitted model scores from many threads", "[model][threads]") {
   const Matrix x = make_data(8, 2000, 4);
   const auto model = hbos::Hbosd::fit(x);

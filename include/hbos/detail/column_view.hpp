@@ -5,6 +5,7 @@
 
 #include <Eigen/Core>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <utility>
@@ -137,6 +138,75 @@ MinMax<Scalar> scan_min_max(const ColumnView<Scalar>& x) {
     check += v * Scalar(0);
   }
   return {lo, hi, check == Scalar(0)};
+}
+
+/// min and max of every column of a row-major block in one pass over its rows: `n` rows of `d`
+/// values, row i at data + i * row_stride (>= d). Writes lo[j], hi[j]; returns whether every
+/// value is finite (the caller then re-scans column by column to name the first one that is not).
+template <class Scalar>
+bool scan_rows_min_max(const Scalar* data, Eigen::Index n, Eigen::Index d, Eigen::Index row_stride,
+                       Scalar* lo, Scalar* hi) {
+  for (Eigen::Index j = 0; j < d; ++j) lo[j] = hi[j] = data[j];
+  Scalar check = 0;
+  Eigen::Index i = 0;
+  using Packet = typename Eigen::internal::packet_traits<Scalar>::type;
+  constexpr Eigen::Index P = Eigen::internal::packet_traits<Scalar>::size;
+  if constexpr (P > 1) {
+    // Contiguous rows are one flat array; when d divides the step of 4 packets, lane k of the
+    // step always holds column k mod d, so the flat packet scan of scan_min_max gives every
+    // column's extremes at once (d = 2: lanes alternate between the two columns).
+    if (row_stride == d && (4 * P) % d == 0 && n * d >= 4 * P) {
+      namespace in = Eigen::internal;
+      const Eigen::Index total = n * d;
+      Packet lo_p[4], hi_p[4];
+      for (int q = 0; q < 4; ++q) lo_p[q] = hi_p[q] = in::ploadu<Packet>(data + q * P);
+      const Packet zero = in::pset1<Packet>(Scalar(0));
+      Packet c0 = zero, c1 = zero;
+      Eigen::Index e = 0;
+      for (; e + 4 * P <= total; e += 4 * P) {
+        const Packet a = in::ploadu<Packet>(data + e);
+        const Packet b = in::ploadu<Packet>(data + e + P);
+        const Packet c = in::ploadu<Packet>(data + e + 2 * P);
+        const Packet dd = in::ploadu<Packet>(data + e + 3 * P);
+        lo_p[0] = in::pmin(lo_p[0], a);
+        lo_p[1] = in::pmin(lo_p[1], b);
+        lo_p[2] = in::pmin(lo_p[2], c);
+        lo_p[3] = in::pmin(lo_p[3], dd);
+        hi_p[0] = in::pmax(hi_p[0], a);
+        hi_p[1] = in::pmax(hi_p[1], b);
+        hi_p[2] = in::pmax(hi_p[2], c);
+        hi_p[3] = in::pmax(hi_p[3], dd);
+        c0 = in::padd(c0, in::padd(in::pmul(a, zero), in::pmul(b, zero)));
+        c1 = in::padd(c1, in::padd(in::pmul(c, zero), in::pmul(dd, zero)));
+      }
+      std::array<Scalar, static_cast<std::size_t>(4 * P)> lanes_lo{}, lanes_hi{};
+      for (int q = 0; q < 4; ++q) {
+        in::pstoreu(lanes_lo.data() + q * P, lo_p[q]);
+        in::pstoreu(lanes_hi.data() + q * P, hi_p[q]);
+      }
+      for (Eigen::Index k = 0; k < 4 * P; ++k) {
+        const Eigen::Index j = k % d;
+        lo[j] = lanes_lo[static_cast<std::size_t>(k)] < lo[j]
+                    ? lanes_lo[static_cast<std::size_t>(k)]
+                    : lo[j];
+        hi[j] = lanes_hi[static_cast<std::size_t>(k)] > hi[j]
+                    ? lanes_hi[static_cast<std::size_t>(k)]
+                    : hi[j];
+      }
+      check = in::predux(in::padd(c0, c1));
+      i = e / d;  // e is a whole number of rows: 4P is a multiple of d
+    }
+  }
+  for (; i < n; ++i) {
+    const Scalar* row = data + i * row_stride;
+    for (Eigen::Index j = 0; j < d; ++j) {
+      const Scalar v = row[j];
+      lo[j] = v < lo[j] ? v : lo[j];
+      hi[j] = v > hi[j] ? v : hi[j];
+      check += v * Scalar(0);
+    }
+  }
+  return check == Scalar(0);
 }
 
 /// min and max of a column in one pass, throwing on any NaN or infinity.
