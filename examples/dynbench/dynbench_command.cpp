@@ -21,6 +21,7 @@
 #include <atomic>
 #include <exception>
 #include <filesystem>
+#include <functional>
 #include <iostream>
 #include <map>
 #include <mutex>
@@ -106,6 +107,31 @@ std::string cell_line(const Cell& c, const CellMetrics& m) {
                      kept ? fmt::format("{:.1f} %", 100.0 * *kept) : std::string("n/a"));
 }
 
+// Runs task(0), ..., task(n - 1) on `jobs` threads (this one among them), taken in order. The
+// first exception stops the rest (as Ctrl-C does) and is rethrown once every thread has ended.
+void run_in_parallel(std::size_t n, int jobs, const std::function<void(std::size_t)>& task) {
+  std::atomic<std::size_t> next{0};
+  std::mutex error_mutex;
+  std::exception_ptr first_error;
+  const auto worker = [&] {
+    for (std::size_t k = next++; k < n && !StopOnSignal::stopped(); k = next++) {
+      try {
+        task(k);
+      } catch (...) {
+        const std::lock_guard<std::mutex> lock(error_mutex);
+        if (!first_error) first_error = std::current_exception();
+        StopOnSignal::request();
+      }
+    }
+  };
+  std::vector<std::thread> threads;
+  const std::size_t threads_wanted = std::min(static_cast<std::size_t>(std::max(jobs, 1)), n);
+  for (std::size_t t = 1; t < threads_wanted; ++t) threads.emplace_back(worker);
+  worker();
+  for (std::thread& t : threads) t.join();
+  if (first_error) std::rethrow_exception(first_error);
+}
+
 int run_grid(const BenchSettings& settings, std::ostream& out, std::ostream& err, bool quiet) {
   const std::vector<Cell> cells = grid_cells(settings);
   if (cells.empty()) throw InvalidArgument("the grid is empty (no scenario, seed or screen)");
@@ -113,15 +139,30 @@ int run_grid(const BenchSettings& settings, std::ostream& out, std::ostream& err
   ProgressBar bar(quiet ? nullptr : &err, terminal, static_cast<int>(cells.size()));
   const StopOnSignal stop_on_signal;
 
-  // 1. The sequences, rendered once (or found in the cache), and their fingerprints.
-  std::map<std::string, std::pair<std::string, std::string>> sequences;  // key -> dir, print
+  // 1. The sequences, rendered once (or found in the cache), `jobs` at a time: a renderer spends
+  //    half its time encoding PNGs on one core. Then their fingerprints.
+  std::vector<std::pair<std::string, std::uint64_t>> to_render;  // scenario, seed; in cell order
   for (const Cell& c : cells) {
-    const std::string key = fmt::format("{}_{}", c.scenario, c.seed);
-    if (sequences.count(key) > 0) continue;
-    bar.status(fmt::format("rendering {} seed {} (or from the cache)", c.scenario, c.seed));
-    const std::string dir = ensure_sequence(settings, c.scenario, c.seed);
-    sequences[key] = {dir, sequence_fingerprint(dir)};
-    if (StopOnSignal::stopped()) break;
+    const std::pair<std::string, std::uint64_t> sequence{c.scenario, c.seed};
+    if (std::find(to_render.begin(), to_render.end(), sequence) == to_render.end())
+      to_render.push_back(sequence);
+  }
+  std::error_code cache_error;
+  fs::create_directories(settings.cache_dir, cache_error);  // once, before the renderers race
+  if (cache_error) {
+    throw InvalidArgument(
+        fmt::format("cannot create cache '{}': {}", settings.cache_dir, cache_error.message()));
+  }
+  std::vector<std::string> rendered(to_render.size());
+  bar.status(fmt::format("rendering {} sequence{} (or taking them from the cache)",
+                         to_render.size(), to_render.size() == 1 ? "" : "s"));
+  run_in_parallel(to_render.size(), settings.jobs, [&](std::size_t k) {
+    rendered[k] = ensure_sequence(settings, to_render[k].first, to_render[k].second);
+  });
+  std::map<std::string, std::pair<std::string, std::string>> sequences;  // key -> dir, print
+  for (std::size_t k = 0; k < to_render.size() && !StopOnSignal::stopped(); ++k) {
+    const std::string key = fmt::format("{}_{}", to_render[k].first, to_render[k].second);
+    sequences[key] = {rendered[k], sequence_fingerprint(rendered[k])};
   }
 
   // 2. The cells an earlier run finished with the same settings are taken as they are.
@@ -141,11 +182,8 @@ int run_grid(const BenchSettings& settings, std::ostream& out, std::ostream& err
 
   // 3. The rest, `jobs` at a time. OpenCV's own threads would only compete with the jobs.
   if (settings.jobs > 1) cv::setNumThreads(1);
-  std::atomic<std::size_t> next{0};
-  std::mutex error_mutex;
-  std::exception_ptr first_error;
-  const auto worker = [&] {
-    for (std::size_t k = next++; k < to_run.size() && !StopOnSignal::stopped(); k = next++) {
+  try {
+    run_in_parallel(to_run.size(), settings.jobs, [&](std::size_t k) {
       const std::size_t i = to_run[k];
       const Cell& c = cells[i];
       try {
@@ -158,27 +196,15 @@ int run_grid(const BenchSettings& settings, std::ostream& out, std::ostream& err
         // Named by its cell, so the failure can be re-run alone; bad input keeps exit status 2.
         const std::string where = fmt::format("cell {} seed {} mask {} screen {}: {}", c.scenario,
                                               c.seed, c.mask, c.screen, e.what());
-        const std::lock_guard<std::mutex> lock(error_mutex);
-        if (!first_error) {
-          first_error = dynamic_cast<const InvalidArgument*>(&e) != nullptr
-                            ? std::make_exception_ptr(InvalidArgument(where))
-                            : std::make_exception_ptr(std::runtime_error(where));
-        }
-        StopOnSignal::request();  // the other jobs stop too
-      } catch (...) {
-        const std::lock_guard<std::mutex> lock(error_mutex);
-        if (!first_error) first_error = std::current_exception();
-        StopOnSignal::request();
+        if (dynamic_cast<const InvalidArgument*>(&e) != nullptr) throw InvalidArgument(where);
+        throw std::runtime_error(where);
       }
-    }
-  };
-  std::vector<std::thread> threads;
-  const auto jobs = std::min<std::size_t>(static_cast<std::size_t>(settings.jobs), to_run.size());
-  for (std::size_t t = 1; t < jobs; ++t) threads.emplace_back(worker);
-  worker();
-  for (std::thread& t : threads) t.join();
+    });
+  } catch (...) {
+    bar.finish();
+    throw;
+  }
   bar.finish();
-  if (first_error) std::rethrow_exception(first_error);
 
   const auto finished = static_cast<std::size_t>(
       std::count_if(results.begin(), results.end(), [](const auto& r) { return r.has_value(); }));

@@ -23,6 +23,13 @@ struct UvRect {
   float u0 = 0.f, v0 = 0.f, u1 = 1.f, v1 = 1.f;
 };
 
+/// The whole texture on each of a box's six faces.
+inline std::array<UvRect, 6> whole_texture_on_every_face() {
+  std::array<UvRect, 6> r;
+  r.fill(UvRect{});
+  return r;
+}
+
 /// Builds a box centred on the origin with half sizes `half` [m]. Face order: +x, -x, +y, -y,
 /// +z, -z. Each face gets its own rectangle of the texture, mapped upright: v runs down the face
 /// (towards -z on side faces; towards -y on the top and bottom faces).

@@ -15,12 +15,6 @@ constexpr float kHipStand = 0.92f, kHipSeated = 0.53f;
 constexpr float kThighLen = 0.45f, kShinLen = 0.42f, kUpperArmLen = 0.28f, kForearmLen = 0.25f;
 constexpr float kHipX = 0.10f, kShoulderX = 0.25f, kShoulderZ = 0.55f;
 
-std::array<UvRect, 6> whole() {
-  std::array<UvRect, 6> r;
-  r.fill(UvRect{});
-  return r;
-}
-
 using Affine = Eigen::Affine3f;
 Affine T(float x, float y, float z) { return Affine(Eigen::Translation3f(x, y, z)); }
 Affine Rx(float a) { return Affine(Eigen::AngleAxisf(a, Eigen::Vector3f::UnitX())); }
@@ -35,16 +29,16 @@ PersonModel::PersonModel(GlRenderer& gl, const TextureLibrary& tex, int look, fl
     add_box(v, Eigen::Vector3f(wx / 2, dy / 2, hz / 2), uv);
     mesh_[p] = gl.add_mesh(v);
   };
-  box(kPelvis, 0.34f, 0.20f, 0.16f, whole());
-  box(kTorso, 0.40f, 0.22f, 0.52f, whole());
-  box(kNeck, 0.10f, 0.10f, 0.08f, whole());
-  box(kUpperArm, 0.09f, 0.09f, kUpperArmLen, whole());
-  box(kForearm, 0.08f, 0.08f, kForearmLen, whole());
-  box(kHand, 0.07f, 0.04f, 0.10f, whole());
-  box(kThigh, 0.15f, 0.16f, kThighLen, whole());
-  box(kShin, 0.12f, 0.12f, kShinLen, whole());
-  box(kFoot, 0.10f, 0.24f, 0.07f, whole());
-  box(kCarried, 0.40f, 0.26f, 0.24f, whole());
+  box(kPelvis, 0.34f, 0.20f, 0.16f, whole_texture_on_every_face());
+  box(kTorso, 0.40f, 0.22f, 0.52f, whole_texture_on_every_face());
+  box(kNeck, 0.10f, 0.10f, 0.08f, whole_texture_on_every_face());
+  box(kUpperArm, 0.09f, 0.09f, kUpperArmLen, whole_texture_on_every_face());
+  box(kForearm, 0.08f, 0.08f, kForearmLen, whole_texture_on_every_face());
+  box(kHand, 0.07f, 0.04f, 0.10f, whole_texture_on_every_face());
+  box(kThigh, 0.15f, 0.16f, kThighLen, whole_texture_on_every_face());
+  box(kShin, 0.12f, 0.12f, kShinLen, whole_texture_on_every_face());
+  box(kFoot, 0.10f, 0.24f, 0.07f, whole_texture_on_every_face());
+  box(kCarried, 0.40f, 0.26f, 0.24f, whole_texture_on_every_face());
 
   // Head: the face on the front (+y), hair on every other face, from one two-region atlas.
   float split = 0.5f;

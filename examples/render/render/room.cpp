@@ -1,15 +1,6 @@
 #include "render/room.hpp"
 
 namespace hbos::render {
-namespace {
-
-std::array<UvRect, 6> whole() {
-  std::array<UvRect, 6> r;
-  r.fill(UvRect{});
-  return r;
-}
-
-}  // namespace
 
 std::vector<DrawItem> build_room(GlRenderer& gl, const TextureLibrary& tex, const RoomLayout& r) {
   std::vector<DrawItem> items;
@@ -29,7 +20,7 @@ std::vector<DrawItem> build_room(GlRenderer& gl, const TextureLibrary& tex, cons
   auto solid = [&](const Eigen::Vector3f& lo, const Eigen::Vector3f& hi, int texture) {
     std::vector<Vertex> v;
     std::vector<Vertex> local;
-    add_box(local, 0.5f * (hi - lo), whole());
+    add_box(local, 0.5f * (hi - lo), whole_texture_on_every_face());
     const Eigen::Vector3f mid = 0.5f * (hi + lo);
     for (Vertex x : local) {
       x.px += mid.x();
@@ -54,7 +45,7 @@ std::vector<DrawItem> build_room(GlRenderer& gl, const TextureLibrary& tex, cons
   const int dark = gl.add_texture(tex.get("dark"), false);
   {
     std::vector<Vertex> v;
-    std::array<UvRect, 6> uv = whole();
+    std::array<UvRect, 6> uv = whole_texture_on_every_face();
     add_box(v, Eigen::Vector3f(0.8f, 0.4f, 0.02f), uv);
     for (Vertex& x : v) x.pz += 0.73f;
     // Top face with the desk photo, side faces with the edge crop: two draws of one geometry.

@@ -8,15 +8,16 @@
 namespace hbos::render {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kFaceCamera = kPi;  // heading towards -y, where the camera is
+// Where an action that goes nowhere points: `{}` would leave an Eigen vector uninitialised.
+const Eigen::Vector2d kNowhere = Eigen::Vector2d::Zero();
 
 Action walk(double x, double y) { return {Action::Kind::kWalk, {x, y}, 0.0, 0.0}; }
-Action wait(double s) { return {Action::Kind::kWait, {}, s, 0.0}; }
-Action turn(double yaw, double s) { return {Action::Kind::kTurn, {}, s, yaw}; }
-Action sit(double yaw) { return {Action::Kind::kSit, {}, 1.2, yaw}; }
-Action stand() { return {Action::Kind::kStand, {}, 1.2, 0.0}; }
-Action swivel(double yaw, double s) { return {Action::Kind::kSwivel, {}, s, yaw}; }
+Action wait(double s) { return {Action::Kind::kWait, kNowhere, s, 0.0}; }
+Action turn(double yaw, double s) { return {Action::Kind::kTurn, kNowhere, s, yaw}; }
+Action sit(double yaw) { return {Action::Kind::kSit, kNowhere, 1.2, yaw}; }
+Action stand() { return {Action::Kind::kStand, kNowhere, 1.2, 0.0}; }
+Action swivel(double yaw, double s) { return {Action::Kind::kSwivel, kNowhere, s, yaw}; }
 
 // The person who carries a box around the desk, crossing between the camera and the desk.
 PersonSpec carrier() {

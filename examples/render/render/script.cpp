@@ -6,7 +6,6 @@
 namespace hbos::render {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kStride = 1.3;  // [m] one gait cycle (two steps)
 
 double wrap(double a) {

@@ -9,6 +9,9 @@
 
 namespace hbos::render {
 
+/// pi, for headings and gait phases.
+inline constexpr double kPi = 3.14159265358979323846;
+
 /// One step of a script.
 struct Action {
   enum class Kind {

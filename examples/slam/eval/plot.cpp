@@ -1,6 +1,7 @@
 #include "eval/plot.hpp"
 
 #include "common/atomic_file.hpp"
+#include "common/index.hpp"
 
 #include <fmt/format.h>
 #include <hbos/error.hpp>
@@ -21,6 +22,8 @@ namespace hbos::slam {
 
 namespace {
 
+using examples::at;
+
 constexpr int kFont = cv::FONT_HERSHEY_SIMPLEX;
 constexpr double kTextScale = 0.5;
 constexpr double kTitleScale = 0.6;
@@ -32,8 +35,6 @@ const cv::Scalar kSeriesColour(190, 100, 30);  // BGR: a dark blue
 const cv::Scalar kRmseColour(40, 40, 215);     // red
 const cv::Scalar kMeanColour(50, 150, 50);     // green
 const cv::Scalar kMedianColour(0, 140, 250);   // orange
-
-std::size_t to_size(Eigen::Index i) { return static_cast<std::size_t>(i); }
 
 struct Range {
   double lo = 0.0;
@@ -222,7 +223,7 @@ std::vector<double> match_times(const Trajectory& gt, const AteResult& ate) {
                   " of ", ate.n_gt_poses, " poses, but '", gt.name, "' has ", gt.size());
   std::vector<double> times;
   times.reserve(ate.matches.size());
-  for (const Match& m : ate.matches) times.push_back(gt.stamps[to_size(m.gt)] - gt.stamps.front());
+  for (const Match& m : ate.matches) times.push_back(gt.stamps[at(m.gt)] - gt.stamps.front());
   return times;
 }
 
@@ -347,7 +348,7 @@ cv::Mat draw_top_view(const Trajectory& gt, const Evaluation& evaluation,
   const std::vector<bool> breaks = breaks_after(times, params.gap_factor);
   const Eigen::Matrix3Xd& est = ate.aligned_positions;
   for (Eigen::Index k = 0; k + 1 < est.cols(); ++k) {
-    if (breaks[to_size(k)]) continue;
+    if (breaks[at(k)]) continue;
     const double error = (ate.errors(k) + ate.errors(k + 1)) / 2.0;
     cv::line(image, axes.to_pixel(est(u, k), est(v, k)),
              axes.to_pixel(est(u, k + 1), est(v, k + 1)), colour_of(table, error, max_error), 2,
@@ -403,8 +404,8 @@ cv::Mat draw_rpe_over_time(const Trajectory& gt, const Trajectory& est,
   Eigen::VectorXd rot(n);
   constexpr double kDegreesPerRadian = 180.0 / 3.141592653589793;
   for (Eigen::Index k = 0; k < n; ++k) {
-    const RpePair& pair = rpe.pairs[to_size(k)];
-    times.push_back(est.stamps[to_size(pair.est0)] + evaluation.params.association.offset -
+    const RpePair& pair = rpe.pairs[at(k)];
+    times.push_back(est.stamps[at(pair.est0)] + evaluation.params.association.offset -
                     gt.stamps.front());
     trans(k) = pair.trans_error;
     rot(k) = pair.rot_error * kDegreesPerRadian;

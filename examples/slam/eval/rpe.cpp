@@ -1,6 +1,7 @@
 #include "eval/rpe.hpp"
 
 #include <hbos/error.hpp>
+#include "common/index.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -11,7 +12,7 @@ namespace hbos::slam {
 
 namespace {
 
-std::size_t to_size(Eigen::Index i) { return static_cast<std::size_t>(i); }
+using examples::at;
 
 // The "position" along the estimate that delta is measured in, one value per estimate pose,
 // non-decreasing.
@@ -28,11 +29,11 @@ std::vector<double> delta_axis(const Trajectory& gt, const Trajectory& est,
     case RpeDeltaUnit::kMetresAlongGt: {
       std::vector<double> travelled(gt.stamps.size(), 0.0);
       for (Eigen::Index k = 1; k < gt.size(); ++k) {
-        travelled[to_size(k)] =
-            travelled[to_size(k - 1)] + (gt.positions.col(k) - gt.positions.col(k - 1)).norm();
+        travelled[at(k)] =
+            travelled[at(k - 1)] + (gt.positions.col(k) - gt.positions.col(k - 1)).norm();
       }
       for (std::size_t i = 0; i < axis.size(); ++i) {
-        axis[i] = travelled[to_size(find_closest_index(gt.stamps, est.stamps[i] + params.offset))];
+        axis[i] = travelled[at(find_closest_index(gt.stamps, est.stamps[i] + params.offset))];
       }
       break;
     }
@@ -92,8 +93,8 @@ RpeResult compute_rpe(const Trajectory& gt, const Trajectory& est, const RpePara
   std::vector<bool> reached(se.size(), false);
   Eigen::Index n_reached = 0;
   for (const double t : se) {
-    const double t_gt = sg[to_size(find_closest_index(sg, t + offset))];
-    const std::size_t back = to_size(find_closest_index(se, t_gt - offset));
+    const double t_gt = sg[at(find_closest_index(sg, t + offset))];
+    const std::size_t back = at(find_closest_index(se, t_gt - offset));
     if (!reached[back]) ++n_reached;
     reached[back] = true;
   }
@@ -108,7 +109,7 @@ RpeResult compute_rpe(const Trajectory& gt, const Trajectory& est, const RpePara
   const std::vector<double> axis = delta_axis(gt, est, params);
   std::vector<std::pair<std::size_t, std::size_t>> candidates;
   for (std::size_t i = 0; i < axis.size(); ++i) {
-    const auto j = to_size(find_closest_index(axis, axis[i] + params.delta));
+    const auto j = at(find_closest_index(axis, axis[i] + params.delta));
     if (j != axis.size() - 1) candidates.emplace_back(i, j);
   }
   result.n_candidates = static_cast<Eigen::Index>(candidates.size());
@@ -118,7 +119,7 @@ RpeResult compute_rpe(const Trajectory& gt, const Trajectory& est, const RpePara
 
   // 2. The ground-truth tolerance: twice the median ground-truth period.
   Eigen::VectorXd periods(gt.size() - 1);
-  for (Eigen::Index k = 0; k + 1 < gt.size(); ++k) periods(k) = sg[to_size(k + 1)] - sg[to_size(k)];
+  for (Eigen::Index k = 0; k + 1 < gt.size(); ++k) periods(k) = sg[at(k + 1)] - sg[at(k)];
   result.gt_max_time_difference = 2.0 * compute_statistics(periods).median;
 
   // 3. Errors.
@@ -127,8 +128,8 @@ RpeResult compute_rpe(const Trajectory& gt, const Trajectory& est, const RpePara
     const double t1 = se[j] + offset;
     const Eigen::Index g0 = find_closest_index(sg, t0);
     const Eigen::Index g1 = find_closest_index(sg, t1);
-    if (std::abs(sg[to_size(g0)] - t0) > result.gt_max_time_difference ||
-        std::abs(sg[to_size(g1)] - t1) > result.gt_max_time_difference) {
+    if (std::abs(sg[at(g0)] - t0) > result.gt_max_time_difference ||
+        std::abs(sg[at(g1)] - t1) > result.gt_max_time_difference) {
       continue;
     }
     const auto ei = static_cast<Eigen::Index>(i);
@@ -159,8 +160,8 @@ RpeResult compute_rpe(const Trajectory& gt, const Trajectory& est, const RpePara
   Eigen::VectorXd trans(n);
   Eigen::VectorXd rot(n);
   for (Eigen::Index k = 0; k < n; ++k) {
-    trans(k) = result.pairs[to_size(k)].trans_error;
-    rot(k) = result.pairs[to_size(k)].rot_error;
+    trans(k) = result.pairs[at(k)].trans_error;
+    rot(k) = result.pairs[at(k)].rot_error;
   }
   result.trans_m = compute_statistics(trans);
   result.rot_deg = compute_statistics(rot).radians_to_degrees();

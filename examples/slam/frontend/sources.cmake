@@ -25,7 +25,6 @@ target_sources(hbos_slam PRIVATE
   ${_hbos_frontend_dir}/rough_pose.cpp
   ${_hbos_frontend_dir}/run_outputs.cpp
   ${_hbos_frontend_dir}/sequence_run.cpp
-  ${_hbos_frontend_dir}/slam_command.cpp
   ${_hbos_frontend_dir}/tracker.cpp)
 # The map tracker (--tracker map): one file per stage under map/.
 target_sources(hbos_slam PRIVATE
@@ -42,8 +41,11 @@ target_sources(hbos_slam PRIVATE
 get_filename_component(_hbos_slam_data_dir ${_hbos_frontend_dir}/../data ABSOLUTE)
 target_compile_definitions(hbos_slam PUBLIC HBOS_SLAM_DATA_DIR="${_hbos_slam_data_dir}")
 
+add_library(hbos_slam_command STATIC ${_hbos_frontend_dir}/slam_command.cpp)
+target_link_libraries(hbos_slam_command PUBLIC hbos_slam)
+hbos_set_warnings(hbos_slam_command)
 add_executable(hbos-slam ${_hbos_frontend_dir}/hbos_slam.cpp)
-target_link_libraries(hbos-slam PRIVATE hbos_slam)
+target_link_libraries(hbos-slam PRIVATE hbos_slam_command)
 hbos_set_warnings(hbos-slam)
 
 # Regenerates examples/slam/data from ../shared (see the SOURCE.md files there).

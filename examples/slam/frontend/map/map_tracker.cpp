@@ -1,6 +1,7 @@
 #include "frontend/map/map_tracker.hpp"
 
 #include <hbos/screening/residual_field.hpp>
+#include "common/index.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -12,6 +13,8 @@
 namespace hbos::slam {
 
 namespace {
+
+using examples::at;
 
 using Clock = std::chrono::steady_clock;
 
@@ -28,8 +31,6 @@ class Stopwatch {
  private:
   Clock::time_point start_ = Clock::now();
 };
-
-std::size_t at(int i) { return static_cast<std::size_t>(i); }
 
 // ORB-SLAM2's ComputeImageBounds: the undistorted image's extent from its corners.
 ImageBounds undistorted_bounds(const CameraModel& camera, int cols, int rows) {

@@ -4,14 +4,15 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include "common/index.hpp"
 
 namespace hbos::slam {
 
 namespace {
 
-constexpr int kHistogramBins = 30;  // ORBmatcher's HISTO_LENGTH
+using examples::at;
 
-std::size_t at(int i) { return static_cast<std::size_t>(i); }
+constexpr int kHistogramBins = 30;  // ORBmatcher's HISTO_LENGTH
 
 // Orientation change from `before` to `after` [deg, 0..360).
 float rotation_deg(float before, float after) {
