@@ -212,12 +212,15 @@ TEST_CASE("fixed pixel gate: exactly |r| <= max_px is kept", "[reprojection][bas
   m.add(Vec2(0, 0), Vec2(3.0, 0.1));
   hbos::ReprojectionScreend screen(hbos::FixedPixelGate{3.0});
   const auto& r = screen.screen(m);
-  CHECK(r.threshold() == 3.0);
+  // Tested as |r|^2 against max_px^2: the score in px^2, the magnitude and its cut in px.
+  CHECK(r.threshold() == 9.0);
+  CHECK(r.magnitude_cut() == 3.0);
   CHECK(r.inlier(0));
   CHECK(r.inlier(1));
   CHECK_FALSE(r.inlier(2));
-  CHECK(r.score(0) == Approx(2.9));
-  CHECK(std::string(r.feature_name(0)) == "residual_px");
+  CHECK(r.score(0) == Approx(2.9 * 2.9));
+  CHECK(r.magnitude(0) == Approx(2.9));
+  CHECK(std::string(r.feature_name(0)) == "residual_px_squared");
 }
 
 TEST_CASE("chi-square gate whitens by sigma and uses 3 dof for stereo matches",
@@ -271,6 +274,7 @@ TEST_CASE("gates: score, magnitude and contribution follow their definitions, mo
       const auto c = r.contributions();
       REQUIRE(c.rows() == m.size());
       const bool chi = name == "chi2";
+      const bool fixed = name == "fixed";
       const bool whiten = chi || std::string(r.magnitude_unit()) == "px/sigma";
       for (Eigen::Index i = 0; i < m.size(); ++i) {
         const double e2 = m.squared_residual(i);
@@ -282,6 +286,12 @@ TEST_CASE("gates: score, magnitude and contribution follow their definitions, mo
           const hbos::ChiSquareGate gate;
           const double ratio = m.has_right(i) ? gate.chi2_mono / gate.chi2_stereo : 1.0;
           CHECK(r.score(i) == Approx(e2 * m.information(i) * ratio).epsilon(1e-14));
+        } else if (fixed) {
+          CHECK(r.score(i) == Approx(e2).epsilon(1e-14));  // |r|^2 [px^2]
+          CHECK(r.threshold() == 9.0);                     // (3 px)^2
+          CHECK(r.magnitude_cut() == 3.0);
+          CHECK(std::string(r.unit()) == "px^2");
+          if (!m.on_dynamic_mask(i)) CHECK(r.inlier(i) == (std::sqrt(e2) <= 3.0));
         } else {
           CHECK(r.score(i) == r.magnitude(i));
         }

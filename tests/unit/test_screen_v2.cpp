@@ -229,7 +229,7 @@ TEST_CASE("one round per call: the result says its unit and its cut", "[screen_v
   };
   for (const Expect& e :
        {Expect{hbos::ChiSquareGate{}, "px^2/sigma^2", "px/sigma"},
-        Expect{hbos::FixedPixelGate{}, "px", "px"}, Expect{hbos::QuantileGate{}, "px", "px"},
+        Expect{hbos::FixedPixelGate{}, "px^2", "px"}, Expect{hbos::QuantileGate{}, "px", "px"},
         Expect{hbos::MadGate{}, "px/sigma", "px/sigma"},
         Expect{hbos::HbosScreen{}, "score", "px/sigma"},
         Expect{hbos::HbosScreen::paper(), "score", "px"}}) {

@@ -685,12 +685,14 @@ void ReprojectionScreen<Scalar>::run_gate(const Matches<Scalar>& matches) {
   const ScreenStrategy& strategy = config_.strategy;
   Statistic stat{false, false, "residual_px"};
   if (std::holds_alternative<ChiSquareGate>(strategy)) stat = {true, true, "chi2"};
+  // The fixed gate compares |r|^2 with max_px^2, as chi^2 does: no square root per match.
+  if (std::holds_alternative<FixedPixelGate>(strategy)) stat = {false, true, "residual_px_squared"};
   if (const auto* q = std::get_if<QuantileGate>(&strategy)) stat.whiten = q->whiten;
   if (const auto* g = std::get_if<MadGate>(&strategy)) stat.whiten = g->whiten;
   if (stat.whiten && !stat.squared) stat.name = "residual_whitened";
   r.feature_names_[0] = stat.name;
   r.magnitude_unit_ = stat.whiten ? "px/sigma" : "px";
-  r.unit_ = stat.squared ? "px^2/sigma^2" : r.magnitude_unit_;
+  r.unit_ = stat.squared ? (stat.whiten ? "px^2/sigma^2" : "px^2") : r.magnitude_unit_;
 
   // The statistic over whole columns (Eigen arrays: SIMD arithmetic; a scalar std::sqrt loop
   // keeps its errno branch and does not vectorise), weighted by the information 1/sigma^2 the
@@ -728,11 +730,11 @@ void ReprojectionScreen<Scalar>::run_gate(const Matches<Scalar>& matches) {
       out = in.unaryExpr([](Scalar v) { return std::sqrt(v); });
     }
   };
-  if (chi != nullptr) {
-    // The magnitude |r|/sigma is sqrt(chi^2): taken on demand, unless stereo matches' chi^2 is
-    // rescaled below (then it is stored first).
+  if (stat.squared) {
+    // The magnitude (|r|/sigma for chi^2, |r| for the fixed gate) is the score's square root:
+    // taken on demand, unless stereo matches' chi^2 is rescaled below (then it is stored first).
     r.magnitude_source_ = Source::SqrtScore;
-    if (stereo) {
+    if (chi != nullptr && stereo) {
       sqrt_into(magnitude, score);
       r.magnitude_source_ = Source::Stored;
       // One threshold for mixed frames: a stereo match's chi^2 is rescaled to the 2-dof gate.
@@ -747,7 +749,7 @@ void ReprojectionScreen<Scalar>::run_gate(const Matches<Scalar>& matches) {
   r.contribution_is_score_ = true;
 
   if (const auto* g = std::get_if<FixedPixelGate>(&strategy)) {
-    r.threshold_ = static_cast<Scalar>(g->max_px);
+    r.threshold_ = static_cast<Scalar>(g->max_px * g->max_px);
   } else if (chi != nullptr) {
     r.threshold_ = static_cast<Scalar>(chi->chi2_mono);
   } else if (const auto* q = std::get_if<QuantileGate>(&strategy)) {
@@ -764,7 +766,7 @@ void ReprojectionScreen<Scalar>::run_gate(const Matches<Scalar>& matches) {
     r.threshold_ = column.size() == 0 ? std::numeric_limits<Scalar>::infinity()
                                       : compute_threshold(column, MedianMad{mad.k, true}, scratch_);
   }
-  r.magnitude_cut_ = chi != nullptr ? std::sqrt(r.threshold_) : r.threshold_;
+  r.magnitude_cut_ = stat.squared ? std::sqrt(r.threshold_) : r.threshold_;
   finish(matches, Scalar(0),
          r.magnitude_source_ == Source::Stored ? r.magnitude_.data() : r.score_.data());
 }
@@ -790,28 +792,52 @@ void ReprojectionScreen<Scalar>::finish(const Matches<Scalar>& matches, Scalar f
   const Scalar* score = r.score_.data();
   std::uint8_t* inlier = r.inlier_.data();
   const auto n = static_cast<std::size_t>(matches.size());
-  Index kept = 0, floor_kept = 0, flagged_rejected = 0;
-  // Branch-free: the decisions of a frame are data, not control flow. The counts run in 32 bits
-  // over chunks: 64-bit counters made the vectorised loop widen, shuffle and spill every step.
-  constexpr std::size_t chunk = std::size_t{1} << 30;
-  for (std::size_t begin = 0; begin < n; begin += chunk) {
-    const std::size_t end = std::min(n, begin + chunk);
-    std::uint32_t kept32 = 0, floor32 = 0, flagged32 = 0;
-    for (std::size_t k = begin; k < end; ++k) {
+  // Branch-free: the decisions of a frame are data, not control flow. The decision pass writes
+  // one byte per match and nothing else; the counts are taken from those bytes after (counting in
+  // the pass itself, three counters beside the byte stores, made the vectorised loop widen,
+  // shuffle and spill: 60 % of a gate's time). GCC 12 vectorises a double comparison stored as
+  // a byte only when the loop also reads a byte, hence the flag in every form of the loop.
+  const std::uint8_t veto = reject_flagged ? 0xFF : 0x00;
+  const bool one_comparison = magnitude == score && std::isfinite(threshold) && floor <= threshold;
+  if (one_comparison) {
+    // A gate's statistic is its own magnitude: below a finite threshold it is finite, and at or
+    // under the floor it is below the threshold, so the rule is one comparison.
+    for (std::size_t k = 0; k < n; ++k)
+      inlier[k] = static_cast<std::uint8_t>((score[k] <= threshold) & ((flag[k] & veto) == 0));
+  } else {
+    // Bit 0: kept; bit 1: kept by the floor (cleared below, once counted).
+    for (std::size_t k = 0; k < n; ++k) {
       const Scalar m = magnitude[k];
       // A residual that overflowed is never kept, whatever the rule says of its score.
       const bool below = (score[k] <= threshold) & std::isfinite(m);
       const bool floored = !below & (m <= floor);
-      const bool flagged = flag[k] != 0;
-      const bool keep = (below | floored) & !(reject_flagged & flagged);
-      floor32 += static_cast<std::uint32_t>(keep & floored);
-      flagged32 += static_cast<std::uint32_t>(!keep & flagged);
-      inlier[k] = keep ? 1 : 0;
-      kept32 += static_cast<std::uint32_t>(keep);
+      const bool keep = (below | floored) & ((flag[k] & veto) == 0);
+      inlier[k] = static_cast<std::uint8_t>(static_cast<unsigned>(keep) |
+                                            (static_cast<unsigned>(keep & floored) << 1U));
     }
+  }
+  // Byte passes (16 matches a vector), counting in 32 bits per chunk.
+  Index kept = 0, floor_kept = 0, flagged_rejected = 0;
+  constexpr std::size_t chunk = std::size_t{1} << 30;
+  const bool any_flagged = matches.flagged_count() > 0;
+  for (std::size_t begin = 0; begin < n; begin += chunk) {
+    const std::size_t end = std::min(n, begin + chunk);
+    if (!one_comparison) {
+      std::uint32_t floor32 = 0;
+      for (std::size_t k = begin; k < end; ++k)
+        floor32 += static_cast<std::uint32_t>(inlier[k] >> 1U);
+      for (std::size_t k = begin; k < end; ++k) inlier[k] &= 1U;
+      floor_kept += floor32;
+    }
+    std::uint32_t kept32 = 0;
+    for (std::size_t k = begin; k < end; ++k) kept32 += inlier[k];
     kept += kept32;
-    floor_kept += floor32;
-    flagged_rejected += flagged32;
+    if (any_flagged) {
+      std::uint32_t flagged32 = 0;
+      for (std::size_t k = begin; k < end; ++k)
+        flagged32 += static_cast<std::uint32_t>((inlier[k] ^ 1U) & (flag[k] != 0 ? 1U : 0U));
+      flagged_rejected += flagged32;
+    }
   }
   r.n_inliers_ = kept;
   r.n_floor_ = floor_kept;

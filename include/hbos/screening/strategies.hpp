@@ -196,7 +196,9 @@ struct HbosScreen {
   }
 };
 
-/// Reject matches whose residual exceeds a fixed number of pixels.
+/// Reject matches whose residual exceeds a fixed number of pixels. The score is |r|^2 [px^2]
+/// against max_px^2 (the magnitude, |r| [px], against max_px), so that no match needs a square
+/// root, as in ORB-SLAM2's chi^2 test.
 struct FixedPixelGate {
   double max_px = 3.0;  ///< [px] largest residual kept, > 0
 };
