@@ -6,9 +6,12 @@
 
 #include <hbos/screening.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "../support/synthetic_scene.hpp"
 
@@ -159,6 +162,67 @@ TEST_CASE("the dominant residual field recovers a coherent shift and a roll", "[
     const hbos::Matchesd m = ring_matches(50, Vec2(4, 4), 1.0);
     const auto field = field_of(m, hbos::ResidualCenter::None);
     CHECK(field.at(Vec2(100, 100)).norm() == 0.0);
+  }
+}
+
+namespace {
+/// The weighted median by its definition: sort by value, walk the cumulative weight.
+double weighted_median_by_sorting(std::vector<std::pair<double, double>> pairs) {
+  std::sort(pairs.begin(), pairs.end());
+  double total = 0;
+  for (const auto& p : pairs) total += p.second;
+  double cumulative = 0;
+  for (const auto& p : pairs) {
+    cumulative += p.second;
+    if (cumulative >= total / 2) return p.first;
+  }
+  return pairs.back().first;
+}
+}  // namespace
+
+TEST_CASE("weighted median: the smallest value whose cumulative weight reaches half",
+          "[reprojection]") {
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (int trial = 0; trial < 2000; ++trial) {
+    const auto n = static_cast<std::size_t>(1 + trial % 97);
+    const int kind = trial % 4;
+    std::vector<std::pair<double, double>> pairs(n);
+    for (auto& p : pairs) {
+      // Few distinct values (ties), dyadic weights (sums exact, so the definition is exact and
+      // the weight can land on half exactly), heavy tails, or equal weights.
+      p.first = kind == 0 ? std::floor(unit(rng) * 5) : (unit(rng) - 0.5) * (kind == 2 ? 1e6 : 4);
+      p.second = kind == 3 ? 1.0 : std::ldexp(1.0 + std::floor(unit(rng) * 8), -3);
+    }
+    const double expected = weighted_median_by_sorting(pairs);
+    std::shuffle(pairs.begin(), pairs.end(), rng);
+    INFO("trial " << trial << ", n " << n);
+    CHECK(hbos::detail::weighted_median(pairs) == expected);
+  }
+  SECTION("one heavy value holds the median wherever it sorts") {
+    std::vector<std::pair<double, double>> pairs{{5, 1}, {1, 1}, {9, 10}, {3, 1}, {7, 1}};
+    CHECK(hbos::detail::weighted_median(pairs) == 9.0);
+  }
+}
+
+TEST_CASE("a refit of the same samples from the stored start equals a fresh fit",
+          "[reprojection]") {
+  hbos::Matchesd m = ring_matches(300, Vec2(1.5, 0.5), 1.2);
+  for (int i = 0; i < 60; ++i) m.add(Vec2(100 + i, 50), Vec2(100 + i + 6, 52), 1.2);
+  hbos::detail::FieldSamples<double> samples;
+  std::vector<double> scratch;
+  hbos::detail::collect_field_samples(
+      m, [](Eigen::Index) { return true; }, samples);
+  for (const auto center : {hbos::ResidualCenter::Constant, hbos::ResidualCenter::Affine}) {
+    hbos::detail::FieldStart<double> start;
+    (void)hbos::detail::dominant_field(samples, center, 3.0, 5, scratch, &start);
+    REQUIRE(start.valid);
+    for (const double window : {0.5, 1.0, 2.0}) {
+      const auto fresh = hbos::detail::dominant_field(samples, center, window, 5, scratch);
+      const auto reused = hbos::detail::dominant_field(samples, center, window, 5, scratch, &start);
+      CHECK(fresh.offset == reused.offset);
+      CHECK(fresh.gradient == reused.gradient);
+    }
   }
 }
 

@@ -83,19 +83,24 @@ struct FieldSamples {
 template <class Scalar, class Use>
 void collect_field_samples(const Matches<Scalar>& matches, const Use& use,
                            FieldSamples<Scalar>& samples) {
-  samples.clear();
-  samples.reserve(static_cast<std::size_t>(matches.size()));
+  // Sized once and trimmed after: a push_back per column and sample kept a capacity check and a
+  // size update in the loop.
+  const auto n = static_cast<std::size_t>(matches.size());
+  for (auto* c : {&samples.u, &samples.v, &samples.rx, &samples.ry, &samples.w}) c->resize(n);
+  std::size_t m = 0;
   for (Eigen::Index i = 0; i < matches.size(); ++i) {
     if (!use(i)) continue;
     const Eigen::Matrix<Scalar, 2, 1> p = matches.predicted(i);
     const Eigen::Matrix<Scalar, 2, 1> r = matches.residual(i);
     const Scalar s = matches.sigma(i);
-    samples.u.push_back(p.x());
-    samples.v.push_back(p.y());
-    samples.rx.push_back(r.x());
-    samples.ry.push_back(r.y());
-    samples.w.push_back(Scalar(1) / (s * s));
+    samples.u[m] = p.x();
+    samples.v[m] = p.y();
+    samples.rx[m] = r.x();
+    samples.ry[m] = r.y();
+    samples.w[m] = Scalar(1) / (s * s);
+    ++m;
   }
+  for (auto* c : {&samples.u, &samples.v, &samples.rx, &samples.ry, &samples.w}) c->resize(m);
 }
 
 /// The most cells balance_by_cell uses (64 a side), so a workspace can reserve them.
@@ -104,10 +109,12 @@ inline constexpr std::size_t kMaxBalanceCells = std::size_t{64} * 64;
 /// Caps the weight of crowded image cells: with the samples binned into square cells of
 /// `cell_px` over their predicted pixels, a cell holding more than the average occupied cell's
 /// count has its samples' weights scaled down to that count. A dynamic object crowding a few
-/// cells then cannot outvote the background spread over the image. `counts` is scratch.
+/// cells then cannot outvote the background spread over the image. `counts`, `cell_of` and
+/// `factor` are scratch.
 template <class Scalar>
 void balance_by_cell(FieldSamples<Scalar>& samples, double cell_px,
-                     std::vector<std::uint32_t>& counts, std::vector<std::uint32_t>& cell_of) {
+                     std::vector<std::uint32_t>& counts, std::vector<std::uint32_t>& cell_of,
+                     std::vector<Scalar>& factor) {
   const std::size_t m = samples.size();
   if (m == 0 || !(cell_px > 0.0)) return;
   const auto [u_lo, u_hi] = std::minmax_element(samples.u.begin(), samples.u.end());
@@ -125,49 +132,80 @@ void balance_by_cell(FieldSamples<Scalar>& samples, double cell_px,
   std::size_t occupied = 0;
   for (const std::uint32_t c : counts) occupied += c > 0 ? 1 : 0;
   const double cap = static_cast<double>(m) / static_cast<double>(occupied);
+  // The factor of each crowded cell once, not a division per sample (the same quotient: the
+  // same bits). 1 marks a cell within the cap, whose samples keep their weight untouched.
+  factor.resize(counts.size());
+  for (std::size_t c = 0; c < counts.size(); ++c) {
+    const auto count = static_cast<double>(counts[c]);
+    factor[c] = count > cap ? static_cast<Scalar>(cap / count) : Scalar(1);
+  }
   for (std::size_t i = 0; i < m; ++i) {
-    const auto c = static_cast<double>(counts[cell_of[i]]);
-    if (c > cap) samples.w[i] *= static_cast<Scalar>(cap / c);
+    const Scalar f = factor[cell_of[i]];
+    if (f != Scalar(1)) samples.w[i] *= f;
   }
 }
 
 /// The weighted median of (value, weight > 0) pairs: the smallest value whose cumulative weight,
 /// in ascending order of value, reaches half the total (the largest when rounding leaves every
-/// cumulative weight short of it). Reorders `pairs`. Expected O(n): a quickselect on the half
-/// that holds the median (nth_element), not a sort (a sort of 1000 pairs per axis was a third
-/// of the default screen's time).
+/// cumulative weight short of it). Reorders `pairs`. Expected O(n): a quickselect that carries
+/// the weight of what it partitions, one three-way partition per step on the side that holds
+/// the median (an nth_element per step, then a second pass for its weight, was a fifth of the
+/// default screen's time).
 template <class Scalar>
 Scalar weighted_median(std::vector<std::pair<Scalar, Scalar>>& pairs) {
   Scalar total = 0;
   for (const auto& p : pairs) total += p.second;
   const Scalar half = total / Scalar(2);
-  const auto by_value = [](const auto& a, const auto& b) { return a.first < b.first; };
   auto first = pairs.begin(), last = pairs.end();
-  Scalar below = 0;  // the weight of every value before `first`
+  Scalar below = 0;  // the weight of every value before `first`, always short of half
+  Scalar largest = first->first;
   while (last - first > 1) {
-    const auto mid = first + (last - first) / 2;
-    std::nth_element(first, mid, last, by_value);
-    Scalar left = 0;
-    for (auto it = first; it != mid; ++it) left += it->second;
-    if (below + left >= half) {
-      last = mid;  // the cumulative weight reaches half within [first, mid)
+    // Median-of-three pivot, one of the range's values, so each step removes at least one.
+    const Scalar a = first->first, b = (first + (last - first) / 2)->first, c = (last - 1)->first;
+    const Scalar pivot = std::max(std::min(a, b), std::min(std::max(a, b), c));
+    // [first, lt) < pivot, [lt, i) == pivot, [gt, last) > pivot.
+    auto lt = first, i = first, gt = last;
+    Scalar less = 0, equal = 0;
+    while (i < gt) {
+      if (i->first < pivot) {
+        less += i->second;
+        std::iter_swap(lt++, i++);
+      } else if (pivot < i->first) {
+        std::iter_swap(i, --gt);
+      } else {
+        equal += i->second;
+        ++i;
+      }
+    }
+    if (below + less >= half) {
+      last = lt;  // reached among the smaller values (never empty: below alone is short)
+    } else if (below + less + equal >= half) {
+      return pivot;
     } else {
-      below += left;
-      first = mid;
+      below += less + equal;
+      largest = pivot;
+      first = gt;
     }
   }
-  return first->first;
+  return first == last ? largest : first->first;
 }
 
-/// The dominant residual of `samples`: the coordinate-wise median, then `iterations` steps of a
-/// mean shift with a flat window of `window` whitened pixels, each residual weighted by its
-/// information 1/sigma^2. (0, 0) without samples. `scratch` grows to the sample count.
+/// Where a dominant-residual fit starts (the weighted median of its samples), kept so that a
+/// refit of the same samples with another window skips the selection.
 template <class Scalar>
-Eigen::Matrix<Scalar, 2, 1> dominant_residual(const FieldSamples<Scalar>& samples, double window,
-                                              int iterations, std::vector<Scalar>& scratch) {
+struct FieldStart {
+  Eigen::Matrix<Scalar, 2, 1> value = Eigen::Matrix<Scalar, 2, 1>::Zero();
+  bool valid = false;
+  void reset() { valid = false; }
+};
+
+/// The start of a dominant-residual fit: the coordinate-wise median of the residuals, weighted
+/// when the weights differ. At least one sample.
+template <class Scalar>
+Eigen::Matrix<Scalar, 2, 1> weighted_start(const FieldSamples<Scalar>& samples,
+                                           std::vector<Scalar>& scratch) {
   const std::size_t m = samples.size();
   Eigen::Matrix<Scalar, 2, 1> c(0, 0);
-  if (m == 0) return c;
   const bool weighted = std::adjacent_find(samples.w.begin(), samples.w.end(),
                                            std::not_equal_to<Scalar>()) != samples.w.end();
   for (int axis = 0; axis < 2; ++axis) {
@@ -185,6 +223,29 @@ Eigen::Matrix<Scalar, 2, 1> dominant_residual(const FieldSamples<Scalar>& sample
     pairs.resize(m);
     for (std::size_t i = 0; i < m; ++i) pairs[i] = {r[i], samples.w[i]};
     c(axis) = weighted_median(pairs);
+  }
+  return c;
+}
+
+/// The dominant residual of `samples`: the coordinate-wise median, then `iterations` steps of a
+/// mean shift with a flat window of `window` whitened pixels, each residual weighted by its
+/// information 1/sigma^2. (0, 0) without samples. `scratch` grows to the sample count.
+/// With `start` valid, the fit starts from it; otherwise the median is stored there (when given).
+template <class Scalar>
+Eigen::Matrix<Scalar, 2, 1> dominant_residual(const FieldSamples<Scalar>& samples, double window,
+                                              int iterations, std::vector<Scalar>& scratch,
+                                              FieldStart<Scalar>* start = nullptr) {
+  const std::size_t m = samples.size();
+  Eigen::Matrix<Scalar, 2, 1> c(0, 0);
+  if (m == 0) return c;
+  if (start != nullptr && start->valid) {
+    c = start->value;
+  } else {
+    c = weighted_start(samples, scratch);
+    if (start != nullptr) {
+      start->value = c;
+      start->valid = true;
+    }
   }
   const auto window2 = static_cast<Scalar>(window * window);
   for (int it = 0; it < iterations; ++it) {
@@ -212,13 +273,14 @@ Eigen::Matrix<Scalar, 2, 1> dominant_residual(const FieldSamples<Scalar>& sample
 /// ill-conditioned (fewer than 6 supporting samples, or all on a line) keeps the previous field.
 template <class Scalar>
 ResidualField<Scalar> dominant_field(const FieldSamples<Scalar>& samples, ResidualCenter center,
-                                     double window, int iterations, std::vector<Scalar>& scratch) {
+                                     double window, int iterations, std::vector<Scalar>& scratch,
+                                     FieldStart<Scalar>* start = nullptr) {
   using Vec2 = Eigen::Matrix<Scalar, 2, 1>;
   using Vec3 = Eigen::Matrix<Scalar, 3, 1>;
   using Mat3 = Eigen::Matrix<Scalar, 3, 3>;
   ResidualField<Scalar> field;
   if (center == ResidualCenter::None) return field;
-  field.offset = dominant_residual(samples, window, iterations, scratch);
+  field.offset = dominant_residual(samples, window, iterations, scratch, start);
   const std::size_t m = samples.size();
   if (center != ResidualCenter::Affine || m < 6) return field;
 

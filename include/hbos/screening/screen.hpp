@@ -201,12 +201,13 @@ class ReprojectionScreen {
     cell_of_.reserve(k);
     result_.coherence_.reserve(k);
     detail::CoherenceWork<Scalar>& w = coherence_work_;
-    for (auto* v : {&w.dx, &w.dy}) v->reserve(k);
+    for (auto* v : {&w.dx, &w.dy, &w.layer, &w.kx, &w.ky, &w.nsx, &w.nsy, &w.ncount}) v->reserve(k);
     w.support.reserve(k);
     w.cell.reserve(k);
     for (auto* v : {&w.sx, &w.sy, &w.count, &w.tx, &w.ty, &w.tcount})
       v->reserve(detail::kMaxCoherenceCells);
     cell_counts_.reserve(detail::kMaxBalanceCells);
+    cell_factor_.reserve(detail::kMaxBalanceCells);
     samples_.reserve(k);
     if (const auto* s = std::get_if<HbosScreen>(&config_.strategy)) {
       // Fitting the extremes [0, clip] makes the histogram take its largest bin count once.
@@ -244,7 +245,9 @@ class ReprojectionScreen {
   /// whitened residual lies within `window` of `field`.
   [[nodiscard]] Scalar field_support(const Matches<Scalar>& matches,
                                      const ResidualField<Scalar>& field, double window) const;
-  void gate_and_evidence(const Matches<Scalar>& matches, const HbosScreen& s);
+  /// Steps 3-4: the noise gate, then (unless `evidence` is false: a refit follows that makes
+  /// this round's evidence moot) every match's evidence and whether it looks static.
+  void gate_and_evidence(const Matches<Scalar>& matches, const HbosScreen& s, bool evidence = true);
   [[nodiscard]] bool in_fit(const Matches<Scalar>& matches, Index i) const {
     return !fit_unflagged_only_ || !matches.on_dynamic_mask(i);
   }
@@ -274,8 +277,10 @@ class ReprojectionScreen {
   std::vector<Scalar> dx_, dy_, depth_, coherence_, proximity_, history_;
   std::vector<std::uint8_t> angle_used_, fired_, looks_static_;
   std::vector<std::uint32_t> cell_counts_, cell_of_;
+  std::vector<Scalar> cell_factor_;
   detail::FieldSamples<Scalar> samples_;
   detail::CoherenceWork<Scalar> coherence_work_;
+  detail::FieldStart<Scalar> start_;  // the last fit's weighted median, for a refit of its samples
   Scalar gate_ = 0, scale_ = 0;
   bool fit_unflagged_only_ = false;
 };
@@ -330,9 +335,11 @@ void ReprojectionScreen<Scalar>::fit_field(const Matches<Scalar>& matches, const
   if (center == ResidualCenter::None) return;
   detail::collect_field_samples(matches, use, samples_);
   if (s.field.balance_cell_px > 0.0)
-    detail::balance_by_cell(samples_, s.field.balance_cell_px, cell_counts_, cell_of_);
-  result_.field_ =
-      detail::dominant_field(samples_, center, window, s.residuals.center_iterations, scratch_);
+    detail::balance_by_cell(samples_, s.field.balance_cell_px, cell_counts_, cell_of_,
+                            cell_factor_);
+  start_.reset();
+  result_.field_ = detail::dominant_field(samples_, center, window, s.residuals.center_iterations,
+                                          scratch_, &start_);
 }
 
 template <class Scalar>
@@ -472,7 +479,7 @@ void ReprojectionScreen<Scalar>::run_hbos(const Matches<Scalar>& matches, const 
 
 template <class Scalar>
 void ReprojectionScreen<Scalar>::gate_and_evidence(const Matches<Scalar>& matches,
-                                                   const HbosScreen& s) {
+                                                   const HbosScreen& s, bool evidence) {
   ScreenResult<Scalar>& r = result_;
   const Index n = matches.size();
   const auto un = static_cast<std::size_t>(n);
@@ -484,6 +491,7 @@ void ReprojectionScreen<Scalar>::gate_and_evidence(const Matches<Scalar>& matche
   const auto floor = static_cast<Scalar>(s.gate.floor);
   gate_ = std::max(floor, static_cast<Scalar>(s.gate.scales) * scale_);
   const Scalar s_eff = std::max(scale_, floor * Scalar(1e-3));
+  if (!evidence) return;
 
   // 4. Evidence.
   coherence_.assign(un, Scalar(0));
@@ -560,15 +568,19 @@ void ReprojectionScreen<Scalar>::run_gated(const Matches<Scalar>& matches, const
       s.residuals.center == ResidualCenter::None ? ResidualCenter::None : ResidualCenter::Constant;
   fit_field(matches, s, fit_set, s.residuals.center_window, first_center);
   centred_magnitudes(matches, s);
-  gate_and_evidence(matches, s);
+  // With a field, only this round's noise scale is used: the rounds below redo the evidence.
+  gate_and_evidence(matches, s, s.residuals.center == ResidualCenter::None);
   if (s.residuals.center != ResidualCenter::None) {
     // The wide first window lets a person a few noise levels off the background join the fit;
-    // refit with a window of the noise this frame has.
+    // refit with a window of the noise this frame has. The fit set and its balanced weights are
+    // those of the first fit, so are the weighted median the mean shift starts from: only the
+    // window changes.
     const double window =
         std::max(std::min(s.residuals.center_window,
                           s.field.refit_window_scales * static_cast<double>(scale_)),
                  1e-3);
-    fit_field(matches, s, fit_set, window, first_center);
+    result_.field_ = detail::dominant_field(samples_, first_center, window,
+                                            s.residuals.center_iterations, scratch_, &start_);
     // A fitted field can still settle between the background and a large, slow object; the
     // rough pose's own frame (no field) is the other candidate. Keep the one more matches of
     // the fit set support within the window, each image cell counted as balanced.
