@@ -8,6 +8,7 @@
 #include "frontend/config.hpp"
 #include "frontend/dataset.hpp"
 #include "frontend/frame_source.hpp"
+#include "frontend/grid/grid_command.hpp"
 #include "frontend/map/map_report.hpp"
 #include "frontend/map/map_run.hpp"
 #include "frontend/mask_files.hpp"
@@ -50,6 +51,7 @@ struct CommandOptions {
   std::string mask_convention = "dynaslam";  ///< of --mask-dir's files
   bool quiet = false;
   bool ablation = false;
+  bool variant_grid = false;
 };
 
 void add_options(CLI::App& app, CommandOptions& o) {
@@ -122,6 +124,11 @@ void add_options(CLI::App& app, CommandOptions& o) {
   app.add_flag("--ablation", o.ablation,
                "run every screen x mask on the static and the person scenario and write "
                "ablation.md and ablation.csv into --out");
+  app.add_flag("--variant-grid", o.variant_grid,
+               "run every screen under masks none, degraded and detector on 8 semi-real variants "
+               "of the person's path with --tracker, and write variant_grid_<tracker>.md and "
+               ".json into --out (finished runs are kept in --out/variant_grid_runs and reused)")
+      ->excludes("--ablation");
 }
 
 // ---- Ctrl-C: stop after the frame in progress and write what the run has --------------------
@@ -323,6 +330,9 @@ int run_slam_command(int argc, const char* const* argv, std::ostream& out, std::
     const CameraModel camera = load_camera(options.config.dataset.camera);
     const RgbdSequence sequence = load_tum_sequence(
         options.config.dataset.path, options.config.dataset.max_association_difference);
+    if (options.variant_grid) {
+      return run_variant_grid_command(options.config, camera, sequence, options.quiet, out, err);
+    }
     return options.ablation ? run_ablation_command(options, camera, sequence, out, err)
                             : run_single(options, camera, sequence, out, err);
   } catch (const InvalidArgument& e) {

@@ -36,6 +36,14 @@ target_sources(hbos_slam PRIVATE
   ${_hbos_frontend_dir}/map/map_tracker.cpp
   ${_hbos_frontend_dir}/map/projection_matcher.cpp
   ${_hbos_frontend_dir}/map/relocaliser.cpp)
+# The variant grid (--variant-grid): the screens ranked over semi-real variants, under grid/.
+target_sources(hbos_slam PRIVATE
+  ${_hbos_frontend_dir}/grid/grid_command.cpp
+  ${_hbos_frontend_dir}/grid/grid_report.cpp
+  ${_hbos_frontend_dir}/grid/grid_run.cpp
+  ${_hbos_frontend_dir}/grid/parallax.cpp
+  ${_hbos_frontend_dir}/grid/run_cache.cpp
+  ${_hbos_frontend_dir}/grid/variants.cpp)
 
 # The embedded data (examples/slam/data): the default input of hbos-slam and the tests' input.
 get_filename_component(_hbos_slam_data_dir ${_hbos_frontend_dir}/../data ABSOLUTE)
