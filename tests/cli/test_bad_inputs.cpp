@@ -379,6 +379,36 @@ TEST_CASE("bad input: hbos-slam names broken images before it runs", "[bad_input
   }
 }
 
+// ---- hbos-slam --variant-grid: checked before its first run
+// --------------------------------------
+
+TEST_CASE("bad input: hbos-slam --variant-grid stops before its first run",
+          "[bad_inputs][hbos_slam]") {
+  const fs::path dir = scratch("slam_grid");
+  SECTION("with --ablation: a usage error") {
+    const Run r = run(dir, kSlam, {"--variant-grid", "--ablation", "--quiet"});
+    CHECK(r.exit_code == 2);
+    CHECK_THAT(r.err, Contains("--variant-grid") && Contains("--ablation"));
+  }
+  SECTION("--out that cannot be created") {
+    spit(dir / "file", "x");
+    const Run r = run(
+        dir, kSlam, {"--variant-grid", "--frames", "4", "--out", (dir / "file" / "out").string()});
+    CHECK(r.exit_code == 2);
+    CHECK_THAT(r.err, Contains("--out") && Contains("file/out"));
+    CHECK_THAT(r.err, !Contains("grid   1/"));
+  }
+  SECTION("a sequence without ground truth") {
+    const fs::path seq = copy_sequence(dir, 4);
+    fs::remove(seq / "groundtruth.txt");
+    const Run r = run(
+        dir, kSlam, {"--variant-grid", "--dataset", seq.string(), "--out", (dir / "out").string()});
+    CHECK(r.exit_code == 2);
+    CHECK_THAT(r.err, Contains("ground truth") && Contains(seq.string()));
+    CHECK_THAT(r.err, !Contains("grid   1/"));
+  }
+}
+
 // ---- hbos-slam: what "tracked" means, and Ctrl-C ---------------------------------------------
 
 TEST_CASE("bad input: a black frame in hbos-slam is reported as not tracked",

@@ -331,6 +331,7 @@ int run_slam_command(int argc, const char* const* argv, std::ostream& out, std::
     const RgbdSequence sequence = load_tum_sequence(
         options.config.dataset.path, options.config.dataset.max_association_difference);
     if (options.variant_grid) {
+      check_run_inputs(options.config, camera, sequence);
       return run_variant_grid_command(options.config, camera, sequence, options.quiet, out, err);
     }
     return options.ablation ? run_ablation_command(options, camera, sequence, out, err)

@@ -108,14 +108,18 @@ std::vector<GridVerdict> grid_verdicts(const GridResult& grid, const std::vector
   std::vector<GridVerdict> verdicts;
   for (const std::string& mask : grid.masks) {
     for (const bool ate : {true, false}) {
+      // The best screen other than the default, and the default.
       const GridCell* best = nullptr;
       const GridCell* def = nullptr;
       for (const GridCell& c : cells) {
         if (c.mask != mask) continue;
         const Spread& s = ate ? c.ate_cm : c.rpe_mm;
         if (s.n == 0) continue;
-        if (best == nullptr || s.mean < (ate ? best->ate_cm : best->rpe_mm).mean) best = &c;
-        if (c.screen == "default") def = &c;
+        if (c.screen == "default") {
+          def = &c;
+        } else if (best == nullptr || s.mean < (ate ? best->ate_cm : best->rpe_mm).mean) {
+          best = &c;
+        }
       }
       if (best == nullptr || def == nullptr) continue;
       const Spread& b = ate ? best->ate_cm : best->rpe_mm;
@@ -127,7 +131,7 @@ std::vector<GridVerdict> grid_verdicts(const GridResult& grid, const std::vector
       v.best_mean = b.mean;
       v.default_mean = d.mean;
       v.spread = std::max(b.sd, d.sd);
-      v.verdict = best == def ? "best" : d.mean - b.mean <= v.spread ? "tied" : "not met";
+      v.verdict = d.mean <= b.mean ? "best" : d.mean - b.mean <= v.spread ? "tied" : "not met";
       const std::vector<double> dv = grid_per_variant(grid, mask, "default", ate);
       const std::vector<double> bv = grid_per_variant(grid, mask, best->screen, ate);
       std::vector<double> gaps;
@@ -175,9 +179,12 @@ std::string grid_markdown(const GridResult& grid, const std::string& settings) {
                                                   static_cast<double>(c.static_matches));
   }
   md +=
-      "\nThe default against the best screen per mask (tied: the gap is within the larger sd over "
-      "the variants; paired: default minus best on each variant).\n\n"
-      "| mask | metric | best screen | best | default | gap | spread | verdict | paired gap | "
+      "\nThe default against the best other screen per mask (best: its mean is lower; tied: the "
+      "gap "
+      "is within the larger sd over the variants; paired: default minus that screen on each "
+      "variant).\n\n"
+      "| mask | metric | best other screen | its mean | default | gap | spread | verdict | paired "
+      "gap | "
       "default lower in |\n|---|---|---|---:|---:|---:|---:|---|---:|---:|\n";
   for (const GridVerdict& v : grid_verdicts(grid, cells)) {
     md += fmt::format("| {} | {} | {} | {:.2f} | {:.2f} | {:.2f} | {:.2f} | {} | {} | {} of {} |\n",

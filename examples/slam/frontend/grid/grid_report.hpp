@@ -37,15 +37,15 @@ struct GridCell {
   long other_matches = 0, other_survivors = 0;
 };
 
-/// Per mask and metric: the best screen and where the default stands.
+/// Per mask and metric: the best screen other than the default, and where the default stands.
 struct GridVerdict {
   std::string mask;
   std::string metric;  ///< ATE | RPE
   std::string best_screen;
   double best_mean = 0.0, default_mean = 0.0;
   double spread = 0.0;  ///< max(sd of the default, sd of the best)
-  std::string verdict;  ///< best | tied | not met
-  Spread paired_gap;    ///< default - best on each variant
+  std::string verdict;  ///< best (lower mean) | tied (gap <= spread) | not met
+  Spread paired_gap;    ///< default - best other screen, on each variant
   int default_lower = 0;
 };
 

@@ -98,7 +98,8 @@ GridResult run_variant_grid(const Config& base, const RgbdSequence& sequence,
   if (base.dataset.max_frames > 0) n = std::min(n, base.dataset.max_frames);
   result.frames = n;
   const cv::Size image = read_frame_images(sequence, 0, camera.depth_factor).bgr.size();
-  const cv::Size cutout = load_person_cutout(base.scenario.person_dir).bgr.size();
+  const PersonCutout person = load_person_cutout(base.scenario.person_dir);
+  const cv::Size cutout = person.bgr.size();
   std::vector<double> stamps = sequence.rgb_stamps();
   stamps.resize(static_cast<std::size_t>(n));
   for (const MaskSource mask : grid_masks()) result.masks.emplace_back(to_string(mask));
@@ -111,9 +112,8 @@ GridResult run_variant_grid(const Config& base, const RgbdSequence& sequence,
     Config config = base;
     config.scenario = with_variant(base.scenario, variant);
     config.output.figure_frame = 0;
-    result.variants.push_back(
-        {variant, person_parallax_px(*sequence.groundtruth, stamps, camera, config.scenario,
-                                     image.width, image.height, cutout.width, cutout.height)});
+    result.variants.push_back({variant, person_parallax_px(*sequence.groundtruth, stamps, camera,
+                                                           config.scenario, person, image)});
     for (const MaskSource mask : grid_masks()) {
       config.mask.source = mask;
       std::optional<std::vector<Frame>> frames;  // read only when a run is not cached
