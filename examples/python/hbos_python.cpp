@@ -1,8 +1,9 @@
 // The C++ half of the Python module `hbos` (examples/python/hbos/__init__.py holds the PyOD-style
 // HBOS class): the default model and the PyOD mode, fitted and scored on numpy float64 arrays
 // read in place (any strides, C or Fortran order: an Eigen::Map over numpy's buffer, no copy),
-// with the GIL released while the library runs, and their model files; and the two passes of
-// the sharded fit (hbos/merge.hpp) that hbos.dask reduces over the chunks of a Dask array.
+// with the GIL released while the library runs, and their model files; and the passes of the
+// sharded fits (hbos/merge.hpp, hbos/pyod/merge.hpp) that hbos.dask reduces over the chunks of a
+// Dask array.
 
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
@@ -11,6 +12,7 @@
 #include <hbos/merge.hpp>
 #include <hbos/model.hpp>
 #include <hbos/model_file.hpp>
+#include <hbos/pyod/merge.hpp>
 #include <hbos/pyod/model.hpp>
 #include <hbos/pyod/model_file.hpp>
 
@@ -149,6 +151,62 @@ DefaultModel model_from_counts(const Array& lo, const Array& hi, Eigen::Index ro
   return DefaultModel{plan.model(total), py::array_t<double>()};
 }
 
+// ---- the PyOD mode's sharded fit: the same range summary, PyOD's parameters, then the counts
+
+hbos::PyodParams pyod_params(Eigen::Index n_bins, bool auto_bins, double alpha, double tol,
+                             double contamination) {
+  hbos::PyodParams p;
+  p.n_bins = n_bins;
+  p.auto_bins = auto_bins;
+  p.alpha = alpha;
+  p.tol = tol;
+  p.contamination = contamination;
+  return p;
+}
+
+std::vector<py::array_t<Eigen::Index>> pyod_count_shard(const Array& x, const Array& lo,
+                                                        const Array& hi, Eigen::Index rows,
+                                                        Eigen::Index n_bins, double alpha,
+                                                        double tol, double contamination) {
+  const hbos::PyodShardedFit<double> plan(range_from(lo, hi, rows),
+                                          pyod_params(n_bins, false, alpha, tol, contamination));
+  const Strided m = as_matrix(x);
+  hbos::CountSummary c;
+  {
+    py::gil_scoped_release release;
+    c = plan.count(m);
+  }
+  std::vector<py::array_t<Eigen::Index>> out;
+  for (const auto& feature : c.counts) {
+    py::array_t<Eigen::Index> a(static_cast<py::ssize_t>(feature.size()));
+    std::copy(feature.begin(), feature.end(), a.mutable_data());
+    out.push_back(std::move(a));
+  }
+  return out;
+}
+
+/// The PyOD mode's histograms merged from shards (hbos::PyodHistograms), with what rebuilds them
+/// (range, parameters, counts: a few numbers per bin), which is how they pickle to workers.
+struct PyodMerged {
+  hbos::PyodHistograms<double> histograms;
+  py::tuple state;
+};
+
+PyodMerged pyod_from_counts(const Array& lo, const Array& hi, Eigen::Index rows,
+                            Eigen::Index n_bins, double alpha, double tol, double contamination,
+                            const std::vector<IndexArray>& counts) {
+  const hbos::PyodShardedFit<double> plan(range_from(lo, hi, rows),
+                                          pyod_params(n_bins, false, alpha, tol, contamination));
+  hbos::CountSummary total;
+  total.rows = rows;
+  for (const auto& feature : counts) {
+    if (feature.ndim() != 1) throw std::invalid_argument("each feature's counts must be 1-D");
+    total.counts.emplace_back(feature.data(), feature.data() + feature.size());
+  }
+  return PyodMerged{plan.histograms(total),
+                    py::make_tuple(lo, hi, rows, n_bins, alpha, tol, contamination, counts)};
+}
+
 }  // namespace
 
 PYBIND11_MODULE(_hbos, m) {
@@ -193,12 +251,7 @@ PYBIND11_MODULE(_hbos, m) {
           "fit",
           [](const Array& x, Eigen::Index n_bins, bool auto_bins, double alpha, double tol,
              double contamination) {
-            hbos::PyodParams p;
-            p.n_bins = n_bins;
-            p.auto_bins = auto_bins;
-            p.alpha = alpha;
-            p.tol = tol;
-            p.contamination = contamination;
+            const hbos::PyodParams p = pyod_params(n_bins, auto_bins, alpha, tol, contamination);
             const Strided mx = as_matrix(x);
             py::gil_scoped_release release;
             return hbos::PyodHbosd::fit(mx, p);
@@ -228,10 +281,61 @@ PYBIND11_MODULE(_hbos, m) {
       .def_static("load",
                   [](const std::string& path) { return hbos::load_pyod_hbos<double>(path); });
 
+  py::class_<PyodMerged>(m, "PyodHistograms")
+      .def_static("from_counts", &pyod_from_counts, py::arg("lo"), py::arg("hi"), py::arg("rows"),
+                  py::arg("n_bins"), py::arg("alpha"), py::arg("tol"), py::arg("contamination"),
+                  py::arg("counts"))
+      .def("decision_function",
+           [](const PyodMerged& self, const Array& x) {
+             const Strided mx = as_matrix(x);
+             Eigen::VectorXd scores;
+             {
+               py::gil_scoped_release release;
+               scores = self.histograms.decision_function(mx);
+             }
+             return to_numpy(scores);
+           })
+      .def("model",
+           [](const PyodMerged& self, const Array& training_scores) {
+             if (training_scores.ndim() != 1)
+               throw std::invalid_argument("the training scores must be a 1-D array");
+             const Eigen::Map<const Eigen::VectorXd> s(training_scores.data(),
+                                                       training_scores.size());
+             return self.histograms.model(s);
+           })
+      .def_property_readonly("n_features",
+                             [](const PyodMerged& s) { return s.histograms.n_features(); })
+      .def_property_readonly("rows", [](const PyodMerged& s) { return s.histograms.rows(); })
+      .def("bin_edges",
+           [](const PyodMerged& s, Eigen::Index j) { return to_numpy(s.histograms.bin_edges(j)); })
+      .def("densities",
+           [](const PyodMerged& s, Eigen::Index j) { return to_numpy(s.histograms.densities(j)); })
+      .def(py::pickle([](const PyodMerged& self) { return self.state; },
+                      [](const py::tuple& t) {
+                        if (t.size() != 8)
+                          throw std::invalid_argument("not a pickled PyodHistograms");
+                        return pyod_from_counts(
+                            t[0].cast<Array>(), t[1].cast<Array>(), t[2].cast<Eigen::Index>(),
+                            t[3].cast<Eigen::Index>(), t[4].cast<double>(), t[5].cast<double>(),
+                            t[6].cast<double>(), t[7].cast<std::vector<IndexArray>>());
+                      }));
+
   m.def("summarize_range", &summarize_range, py::arg("X"),
         "pass 1 of the sharded fit: per feature min and max of X, and its row count");
   m.def("count_shard", &count_shard, py::arg("X"), py::arg("lo"), py::arg("hi"), py::arg("rows"),
         py::arg("bins"), py::arg("shifts"),
         "pass 2: per feature the rows of X in each bin of the plan fixed by the global range");
+  m.def("pyod_count_shard", &pyod_count_shard, py::arg("X"), py::arg("lo"), py::arg("hi"),
+        py::arg("rows"), py::arg("n_bins"), py::arg("alpha"), py::arg("tol"),
+        py::arg("contamination"),
+        "pass 2 of the PyOD mode's sharded fit: numpy's counts of X in the edges of the global "
+        "range");
+  m.def(
+      "pyod_check_params",
+      [](Eigen::Index n_bins, double alpha, double tol, double contamination) {
+        hbos::detail::validate(pyod_params(n_bins, false, alpha, tol, contamination));
+      },
+      py::arg("n_bins"), py::arg("alpha"), py::arg("tol"), py::arg("contamination"),
+      "PyOD's parameter checks, before any pass of the sharded fit");
   m.def("model_kind", [](const std::string& path) { return hbos::read_model_info(path).kind; });
 }

@@ -24,6 +24,11 @@
 ///
 /// `fit_sharded(shards, params)` runs the whole plan over a list of in-memory shards.
 ///
+/// The PyOD mode (`PyodHbos`) has the same plan in hbos/pyod/merge.hpp, with these summaries:
+/// mergeable for an integer n_bins (PyOD's numpy.histogram needs only the range and n, then the
+/// counts); n_bins = auto is refused (PyOD's Birgé–Rozenblac search histograms the whole data
+/// for every candidate bin count).
+///
 /// Threading: summaries are plain values; a ShardedFit is immutable after construction, and
 /// `count` may run on many shards in parallel.
 

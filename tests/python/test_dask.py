@@ -1,7 +1,10 @@
 """hbos.dask (examples/python/hbos/dask.py) on a local distributed cluster the test starts: a
 model fitted chunk by chunk is the in-memory model bit for bit (scores, threshold, labels),
-whatever the chunking, on worker processes (the model travels pickled); non-mergeable settings
-are refused. Skipped where Debian's python3-dask / python3-distributed are not installed."""
+whatever the chunking, on worker processes (the model travels pickled), in the default mode and
+in mode="pyod" (where it also gives PyOD 3.6.5's reference scores); non-mergeable settings are
+refused. Skipped where Debian's python3-dask / python3-distributed are not installed."""
+
+import os
 
 import pytest
 
@@ -54,6 +57,60 @@ def test_chunked_fit_is_the_in_memory_fit(client, chunks, n_bins):
     np.testing.assert_array_equal(bits(clf.decision_function(Q)), bits(whole.decision_function(Q)))
 
 
+# A one-row chunk first and last, uneven chunks between; one chunk; split columns.
+@pytest.mark.parametrize("chunks", [((1, 1234, 2764, 1), (6,)), (5000, 6), (1500, 4)])
+@pytest.mark.parametrize("n_bins,alpha,tol", [(10, 0.1, 0.5), (7, 0.01, 0.2)])
+def test_chunked_pyod_fit_is_the_in_memory_pyod_fit(client, chunks, n_bins, alpha, tol):
+    X = mixed(4000, 11)  # a constant feature, an integer one with values on interior edges
+    whole = hbos.HBOS(n_bins=n_bins, alpha=alpha, tol=tol, contamination=0.05,
+                      mode="pyod").fit(X)
+    clf = hbos.dask.fit(da.from_array(X, chunks=chunks), n_bins=n_bins, alpha=alpha, tol=tol,
+                        contamination=0.05, mode="pyod")
+    assert clf.mode == "pyod"
+    scores = clf.decision_scores_.compute()
+    np.testing.assert_array_equal(bits(scores), bits(whole.decision_scores_))
+    assert clf.threshold_ == whole.threshold_
+    np.testing.assert_array_equal(clf.labels_.compute(), whole.labels_)
+    for j in range(X.shape[1]):
+        np.testing.assert_array_equal(bits(clf._model.bin_edges(j)),
+                                      bits(whole._model.bin_edges(j)))
+        np.testing.assert_array_equal(bits(clf._model.densities(j)),
+                                      bits(whole._model.densities(j)))
+    Q = mixed(1500, 12) * 1.3 - 0.5  # inside, on and beyond the training range
+    np.testing.assert_array_equal(bits(hbos.dask.score(clf, da.from_array(Q, chunks=400))),
+                                  bits(whole.decision_function(Q)))
+    np.testing.assert_array_equal(clf.predict(Q), whole.predict(Q))
+    # The merged histograms with the training scores make the full PyOD model.
+    full = clf._model.model(scores)
+    assert full.threshold == whole.threshold_
+    np.testing.assert_array_equal(bits(full.decision_scores), bits(whole.decision_scores_))
+
+
+def test_chunked_pyod_fit_gives_pyod_reference_scores(client, tmp_path):
+    data = os.environ.get("HBOS_TEST_DATA_DIR")
+    if data is None:
+        pytest.skip("HBOS_TEST_DATA_DIR is not set (ctest sets it)")
+    d = os.path.join(data, "hbos_pyod", "vertebral")
+    X = np.loadtxt(os.path.join(d, "X.csv"), delimiter=",")
+    n = X.shape[0]
+    clf = hbos.dask.fit(da.from_array(X, chunks=((1, 100, n - 102, 1), (X.shape[1],))), n_bins=20,
+                        alpha=0.01, tol=0.2, contamination=0.1, mode="pyod")
+    tag = "nb20_a0.01_tol0.2"
+    reference = np.loadtxt(os.path.join(d, f"scores_{tag}.csv"))
+    np.testing.assert_array_equal(bits(clf.decision_scores_.compute()), bits(reference))
+    assert clf.threshold_ == np.loadtxt(os.path.join(d, f"threshold_{tag}.txt"))
+    X_test = np.loadtxt(os.path.join(d, "X_test.csv"), delimiter=",")
+    np.testing.assert_array_equal(bits(clf.decision_function(X_test)),
+                                  bits(np.loadtxt(os.path.join(d, f"test_scores_{tag}.csv"))))
+    # Saved (the lazy training scores computed into the file) and loaded: PyOD's model again.
+    clf.save(tmp_path / "pyod.hbos")
+    again = hbos.HBOS.load(tmp_path / "pyod.hbos")
+    assert again.mode == "pyod" and again.threshold_ == clf.threshold_
+    np.testing.assert_array_equal(bits(again.decision_scores_), bits(reference))
+    np.testing.assert_array_equal(bits(again.decision_function(X_test)),
+                                  bits(clf.decision_function(X_test)))
+
+
 def test_exact_percentile_matches_numpy_on_ties_and_spread(client):
     rng = np.random.default_rng(3)
     # ties (a third of the values equal), a wide spread and more values than one gather holds
@@ -68,6 +125,12 @@ def test_non_mergeable_settings_are_refused(client):
     X = da.from_array(mixed(100, 1), chunks=50)
     with pytest.raises(ValueError, match="Birge-Rozenblac"):
         hbos.dask.fit(X, n_bins="auto")
+    with pytest.raises(ValueError, match="auto.*mode='pyod'.*Birge-Rozenblac.*every candidate"):
+        hbos.dask.fit(X, n_bins="auto", mode="pyod")
+    with pytest.raises(ValueError, match="mode must be"):
+        hbos.dask.fit(X, mode="pyod3")
+    with pytest.raises(hbos.InvalidArgument, match="n_bins must be > 2"):
+        hbos.dask.fit(X, n_bins=2, mode="pyod")
     with pytest.raises(ValueError, match="2-D"):
         hbos.dask.fit(da.zeros(10, chunks=5))
     bad = mixed(100, 1)

@@ -95,7 +95,12 @@ class HBOS:
 
     def save(self, path):
         """Writes the fitted model to a model file (atomically; docs/data_science.md)."""
-        self._fitted().save(str(path))
+        model = self._fitted()
+        if isinstance(model, _hbos.PyodHistograms):
+            # Fitted by hbos.dask in mode="pyod": a PyOD-mode file holds the training scores,
+            # so they are computed (np.asarray on the lazy scores) and joined to the histograms.
+            model = model.model(np.asarray(self.decision_scores_, dtype=np.float64))
+        model.save(str(path))
 
     @classmethod
     def load(cls, path):

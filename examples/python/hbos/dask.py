@@ -1,8 +1,9 @@
-"""HBOS on Dask arrays: the default mode fitted chunk by chunk, bit-identical to ``HBOS().fit``.
+"""HBOS on Dask arrays: either mode fitted chunk by chunk, bit-identical to ``HBOS(...).fit``.
 
     import dask.array as da, hbos.dask
     X = da.from_zarr(...)                      # n_samples x n_features, chunked along rows
     clf = hbos.dask.fit(X, contamination=0.1)  # an hbos.HBOS, as if fitted on X in memory
+    pyod = hbos.dask.fit(X, n_bins=10, mode="pyod")  # PyOD 3.6.5's HBOS, as if fitted in memory
     scores = hbos.dask.score(clf, X_new)       # a lazy dask array (map_blocks)
 
 The fit is the library's sharded fit (hbos/merge.hpp), two passes over the chunks: per-chunk
@@ -14,8 +15,15 @@ training scores with numpy's linear interpolation, found by narrowing histograms
 chunks (a few passes, memory bounded by one chunk plus 2^20 values), not by dask's approximate
 percentile. The model pickles as its model-file text, so it travels to workers exactly.
 
-Only the default mode with a bin count known from the range and size is mergeable: n_bins None
-(5 coarse bins), an int, not "auto" (Birge-Rozenblac needs all the data) and not mode="pyod".
+mode="pyod" (PyOD 3.6.5's HBOS, hbos/pyod/merge.hpp) is the same plan: numpy's edges of the
+global range, per-chunk numpy counts added up, then a scoring pass for decision_scores_ and the
+exact percentile for threshold_, so the model, scores, threshold and labels are
+``HBOS(mode="pyod", ...).fit(X)``'s bit for bit. Its merged histograms pickle as the range,
+parameters and counts (a few numbers per bin), rebuilt on the worker by the same code.
+
+Mergeable: an integer n_bins (None: the default mode's 5 coarse bins, PyOD's 10 in mode="pyod").
+Refused: n_bins="auto" in either mode (the Birge-Rozenblac search histograms all the data for
+every candidate bin count; a range summary cannot stand in for it).
 """
 
 import numpy as np
@@ -69,23 +77,43 @@ def _tree(items, combine, width=8):
     return items[0] if len(items) == 1 else dask.delayed(combine)(items)
 
 
-def fit(X, n_bins=None, contamination=0.1):
-    """Fits the default-mode HBOS on a 2-D dask array (or anything dask.array.asarray takes).
+def _pyod_count(block, lo, hi, rows, params):
+    return _hbos.pyod_count_shard(_as_float64(block), lo, hi, rows, *params)
+
+
+def fit(X, n_bins=None, contamination=0.1, mode="default", alpha=0.1, tol=0.5):
+    """Fits HBOS on a 2-D dask array (or anything dask.array.asarray takes).
 
     Returns an hbos.HBOS with decision_scores_ (a lazy dask array), threshold_ and labels_
-    (lazy), whose model scores bit for bit as ``HBOS(n_bins, contamination=...).fit(X)``."""
+    (lazy), whose model scores bit for bit as ``HBOS(n_bins, alpha, tol, contamination,
+    mode).fit(X)`` (alpha and tol apply to mode="pyod" only)."""
+    if mode not in ("default", "pyod"):
+        raise ValueError(f"mode must be 'default' or 'pyod', got {mode!r}")
     if isinstance(n_bins, str):
-        raise ValueError(f"n_bins={n_bins!r} cannot be fitted by chunks (the Birge-Rozenblac rule "
-                         "needs all the data); pass None or an int")
-    clf = HBOS(n_bins=10 if n_bins is None else n_bins, contamination=contamination)
+        why = ("PyOD's Birge-Rozenblac search histograms all the data for every candidate bin "
+               "count" if mode == "pyod" else "the Birge-Rozenblac rule needs all the data")
+        raise ValueError(f"n_bins={n_bins!r} cannot be fitted by chunks in mode={mode!r} ({why}); "
+                         "pass " + ("an int" if mode == "pyod" else "None or an int"))
+    if mode == "pyod":
+        clf = HBOS(n_bins=10 if n_bins is None else int(n_bins), alpha=alpha, tol=tol,
+                   contamination=contamination, mode="pyod")
+        params = (clf.n_bins, float(alpha), float(tol), float(contamination))
+        _hbos.pyod_check_params(*params)  # PyOD's checks, before any pass
+    else:
+        clf = HBOS(n_bins=10 if n_bins is None else n_bins, contamination=contamination)
+        bins = _default_bins(n_bins)
     X = _rows_only(X)
-    bins = _default_bins(n_bins)
     blocks = X.to_delayed().ravel()
     lo, hi, rows = dask.compute(_tree([dask.delayed(_range)(b) for b in blocks],
                                       _merge_ranges))[0]
-    counts = [dask.delayed(_count)(b, lo, hi, rows, bins) for b in blocks]
-    total = dask.compute(_tree(counts, _add_counts))[0]
-    clf._model = _hbos.DefaultModel.from_counts(lo, hi, rows, bins, _SHIFTS, total)
+    if mode == "pyod":
+        counts = [dask.delayed(_pyod_count)(b, lo, hi, rows, params) for b in blocks]
+        total = dask.compute(_tree(counts, _add_counts))[0]
+        clf._model = _hbos.PyodHistograms.from_counts(lo, hi, rows, *params, total)
+    else:
+        counts = [dask.delayed(_count)(b, lo, hi, rows, bins) for b in blocks]
+        total = dask.compute(_tree(counts, _add_counts))[0]
+        clf._model = _hbos.DefaultModel.from_counts(lo, hi, rows, bins, _SHIFTS, total)
     clf.decision_scores_ = score(clf, X)
     clf.threshold_ = percentile(clf.decision_scores_, 100.0 * (1.0 - contamination))
     clf.labels_ = (clf.decision_scores_ > clf.threshold_).astype(int)

@@ -19,6 +19,9 @@
 ///  7. threshold = the (1 - contamination) percentile of the training scores (numpy "linear");
 ///     label = score > threshold (strict).
 ///
+/// Fitting on row shards (bit-identical to fit on all rows, integer n_bins only):
+/// hbos/pyod/merge.hpp.
+///
 /// Two PyOD defects are reproduced **on purpose** (that is the point of this mode; the default
 /// hbos model does not have them):
 ///  - Edge convention. Counting uses [e_k, e_{k+1}) but look-up uses (e_{k-1}, e_k], so a training
@@ -138,6 +141,32 @@ decltype(auto) with_stride(Eigen::Index stride, F&& f) {
   return std::forward<F>(f)(stride);
 }
 
+/// numpy's histogram range of feature j, which must not overflow a double (numpy's bins of
+/// width inf would give NaN and the auto search a negative cell count).
+inline OuterEdges pyod_histogram_range(Eigen::Index j, double min_value, double max_value) {
+  const OuterEdges range = numpy_outer_edges(min_value, max_value);
+  require(std::isfinite(range.hi - range.lo), "feature ", j, ": its range [", range.lo, ", ",
+          range.hi, "] overflows a double");
+  return range;
+}
+
+/// The B + 1 edges numpy.histogram places over a feature whose values span [min_value,
+/// max_value]: what PyodHbos::fit uses, and what the sharded fit (hbos/pyod/merge.hpp) fixes
+/// from the merged range. Refuses bins narrower than the floating-point resolution.
+inline Eigen::VectorXd pyod_bin_edges(Eigen::Index j, Eigen::Index B, double min_value,
+                                      double max_value) {
+  const OuterEdges range = pyod_histogram_range(j, min_value, max_value);
+  Eigen::VectorXd edges(B + 1);
+  numpy_histogram_edges(range, B, edges.data());
+  for (Eigen::Index k = 0; k < B; ++k) {
+    // numpy would divide 0 by a 0 width here and score NaN; refuse instead.
+    require(edges[k] < edges[k + 1], "feature ", j, ": ", B,
+            " bins are narrower than the floating-point resolution near ", edges[k], " (edges ", k,
+            " and ", k + 1, " are equal); rescale or shift the feature");
+  }
+  return edges;
+}
+
 template <class Scalar>
 void require_finite_entry(const StridedView<Scalar>& X, const char* what) {
   for (Eigen::Index j = 0; j < X.cols; ++j) {
@@ -148,6 +177,9 @@ void require_finite_entry(const StridedView<Scalar>& X, const char* what) {
 }
 
 }  // namespace detail
+
+template <class Scalar>
+class PyodHistograms;  // hbos/pyod/merge.hpp: the histograms of a sharded fit
 
 /// HBOS exactly as PyOD 3.6.5 computes it (the maths is in this file's header comment), as an
 /// immutable fitted model.
@@ -395,6 +427,37 @@ class PyodHbos {
 
   PyodHbos() = default;
 
+  // The sharded fit (hbos/pyod/merge.hpp) builds models from merged counts.
+  template <class>
+  friend class PyodHistograms;
+
+  /// The histograms of n samples from each feature's numpy edges (detail::pyod_bin_edges) and
+  /// counts, through the code fit uses, with no training outputs yet (set_training_scores).
+  [[nodiscard]] static PyodHbos from_counts(const std::vector<Eigen::VectorXd>& edges,
+                                            const std::vector<std::vector<Eigen::Index>>& counts,
+                                            Eigen::Index n, const PyodParams& params) {
+    PyodHbos model;
+    model.params_ = params;
+    for (std::size_t j = 0; j < edges.size(); ++j) {
+      Layout layout;
+      Feature f = lay_out(edges[j], layout);
+      f.counts = Eigen::Map<const Counts>(counts[j].data(), f.bins());
+      finish(f, layout, n, static_cast<Eigen::Index>(j), model.params_);
+      model.features_.push_back(std::move(f));
+    }
+    return model;
+  }
+
+  /// The training outputs of a model: its scores of the training rows, the threshold PyOD
+  /// derives from them and the labels.
+  void set_training_scores(Vector training_scores) {
+    std::vector<Scalar> percentile_scratch;
+    threshold_ = detail::pyod_threshold(training_scores.data(), training_scores.size(),
+                                        params_.contamination, percentile_scratch);
+    scores_ = std::move(training_scores);
+    labels_ = label(scores_);
+  }
+
   [[nodiscard]] static View row_major_view(const Scalar* data, Eigen::Index rows,
                                            Eigen::Index cols) {
     detail::require(rows >= 0 && cols >= 0, "buffer shape must be non-negative, got ", rows, " x ",
@@ -491,15 +554,23 @@ class PyodHbos {
 
   static constexpr Eigen::Index kMaxStoredBins = 65536;
 
-  /// numpy's histogram range of feature j, which must not overflow a double (numpy's bins of
-  /// width inf would give NaN and the auto search a negative cell count).
+  /// detail::pyod_histogram_range (numpy's range of feature j, refused if it overflows).
   static detail::OuterEdges require_finite_range(Eigen::Index j, double min_value,
                                                  double max_value) {
-    const detail::OuterEdges range = detail::numpy_outer_edges(min_value, max_value);
-    detail::require(std::isfinite(range.hi - range.lo), "feature ", j, ": its range [", range.lo,
-                    ", ", range.hi, "] overflows a double");
-    return range;
+    return detail::pyod_histogram_range(j, min_value, max_value);
   }
+
+  /// Per grid cell: the interior edge inside it (+inf if none) and the bin of a value below
+  /// that edge (= #{interior edges in cells below}); first_bin = -1 marks a cell holding several.
+  struct CellBins {
+    double edge = std::numeric_limits<double>::infinity();
+    Eigen::Index first_bin = 0;
+  };
+  /// What counting and the look-up grid need to know of a feature's edges, cell by cell.
+  struct Layout {
+    std::vector<Eigen::Index> edges_in;  // interior edges per cell
+    std::vector<CellBins> cell_bins;
+  };
 
   /// numpy.histogram(column, B, density=True) plus the scoring tables. Writes the bin each value
   /// is scored with (which differs from the bin it is counted in for values on interior edges),
@@ -508,43 +579,9 @@ class PyodHbos {
                                            Eigen::Index n, Eigen::Index j, Eigen::Index B,
                                            double min_value, double max_value,
                                            const PyodParams& params, std::uint16_t* scored_bins) {
-    const detail::OuterEdges range = require_finite_range(j, min_value, max_value);
-    Feature f;
-    f.edges.resize(B + 1);
-    detail::numpy_histogram_edges(range, B, f.edges.data());
-    for (Eigen::Index k = 0; k < B; ++k) {
-      // numpy would divide 0 by a 0 width here and score NaN; refuse instead.
-      detail::require(f.edges[k] < f.edges[k + 1], "feature ", j, ": ", B,
-                      " bins are narrower than the floating-point resolution near ", f.edges[k],
-                      " (edges ", k, " and ", k + 1, " are equal); rescale or shift the feature");
-    }
-    f.lo = f.edges[0];
-    f.hi = f.edges[B];
-    f.norm = static_cast<double>(B) / (f.hi - f.lo);
-
-    // The grid: 64 cells per bin (at least 1024, at most 65536), plus the cell of e_B itself,
-    // which rounding may put one past the nominal count.
-    const Eigen::Index nominal_cells =
-        std::min<Eigen::Index>(std::max<Eigen::Index>(1024, 64 * B), 65536);
-    f.cell_scale = static_cast<double>(nominal_cells) / (f.hi - f.lo);
-    if (!std::isfinite(f.cell_scale)) f.cell_scale = 0.0;  // a range of denormals: one cell
-    f.cells = f.cell(f.hi) + 1;
-    // Per cell: the interior edge inside it (+inf if none) and the bin of a value below that
-    // edge (= #{interior edges in cells below}); first_bin = -1 marks a cell holding several.
-    struct CellBins {
-      double edge = std::numeric_limits<double>::infinity();
-      Eigen::Index first_bin = 0;
-    };
-    std::vector<Eigen::Index> edges_in(static_cast<std::size_t>(f.cells), 0);
-    for (Eigen::Index k = 1; k < B; ++k) ++edges_in[static_cast<std::size_t>(f.cell(f.edges[k]))];
-    std::vector<CellBins> cell_bins(static_cast<std::size_t>(f.cells));
-    for (Eigen::Index c = 0, below = 0; c < f.cells; ++c) {
-      const Eigen::Index inside = edges_in[static_cast<std::size_t>(c)];
-      CellBins& cell = cell_bins[static_cast<std::size_t>(c)];
-      cell.first_bin = inside > 1 ? -1 : below;
-      if (inside == 1) cell.edge = f.edges[below + 1];
-      below += inside;
-    }
+    Layout layout;
+    Feature f = lay_out(detail::pyod_bin_edges(j, B, min_value, max_value), layout);
+    const std::vector<CellBins>& cell_bins = layout.cell_bins;
 
     // Count (bin c: e_c <= x < e_{c+1}, last closed) and record the scored bin (PyOD's look-up:
     // e_{s} < x <= e_{s+1}, the minimum in bin 0). Four count arrays, used in turn, break the
@@ -590,6 +627,47 @@ class PyodHbos {
                     counts[static_cast<std::size_t>(2 * B + k)] +
                     counts[static_cast<std::size_t>(3 * B + k)];
     }
+    finish(f, layout, n, j, params);
+    return f;
+  }
+
+  /// A feature's edges (detail::pyod_bin_edges) laid out on its look-up grid.
+  [[nodiscard]] static Feature lay_out(Eigen::VectorXd edges, Layout& layout) {
+    Feature f;
+    f.edges = std::move(edges);
+    const Eigen::Index B = f.bins();
+    f.lo = f.edges[0];
+    f.hi = f.edges[B];
+    f.norm = static_cast<double>(B) / (f.hi - f.lo);
+
+    // The grid: 64 cells per bin (at least 1024, at most 65536), plus the cell of e_B itself,
+    // which rounding may put one past the nominal count.
+    const Eigen::Index nominal_cells =
+        std::min<Eigen::Index>(std::max<Eigen::Index>(1024, 64 * B), 65536);
+    f.cell_scale = static_cast<double>(nominal_cells) / (f.hi - f.lo);
+    if (!std::isfinite(f.cell_scale)) f.cell_scale = 0.0;  // a range of denormals: one cell
+    f.cells = f.cell(f.hi) + 1;
+    std::vector<Eigen::Index>& edges_in = layout.edges_in;
+    edges_in.assign(static_cast<std::size_t>(f.cells), 0);
+    for (Eigen::Index k = 1; k < B; ++k) ++edges_in[static_cast<std::size_t>(f.cell(f.edges[k]))];
+    layout.cell_bins.assign(static_cast<std::size_t>(f.cells), CellBins{});
+    for (Eigen::Index c = 0, below = 0; c < f.cells; ++c) {
+      const Eigen::Index inside = edges_in[static_cast<std::size_t>(c)];
+      CellBins& cell = layout.cell_bins[static_cast<std::size_t>(c)];
+      cell.first_bin = inside > 1 ? -1 : below;
+      if (inside == 1) cell.edge = f.edges[below + 1];
+      below += inside;
+    }
+    return f;
+  }
+
+  /// Densities, log terms and the look-up grid of a laid-out feature from its counts (f.counts,
+  /// n samples in all): the same code for fit and for counts merged from shards.
+  static void finish(Feature& f, const Layout& layout, Eigen::Index n, Eigen::Index j,
+                     const PyodParams& params) {
+    const Eigen::Index B = f.bins();
+    const std::vector<Eigen::Index>& edges_in = layout.edges_in;
+    const std::vector<CellBins>& cell_bins = layout.cell_bins;
 
     f.densities.resize(B);
     f.log_terms.resize(B);
@@ -623,7 +701,6 @@ class PyodHbos {
         cell = {cell_bins[uc].edge, f.log_terms[bin], f.log_terms[bin + 1]};
       }
     }
-    return f;
   }
 
   /// out[i] = -(numpy's pairwise sum over features of the row's log terms), a block of rows at a
