@@ -119,11 +119,10 @@ Range summarize_range(const Array& x) {
   return {lo, hi, r.rows};
 }
 
-std::vector<py::array_t<Eigen::Index>> count_shard(const Array& x, const Array& lo, const Array& hi,
-                                                   Eigen::Index rows, const std::string& bins,
-                                                   Eigen::Index shifts) {
-  const hbos::ShardedFit<double> plan(range_from(lo, hi, rows), default_params(bins, shifts));
-  const Strided m = as_matrix(x);
+/// A plan's integer counts of one shard (the GIL released while counting), a numpy array per
+/// feature: the default mode's ShardedFit and the PyOD mode's PyodShardedFit alike.
+template <class Plan>
+std::vector<py::array_t<Eigen::Index>> counts_of_shard(const Plan& plan, const Strided& m) {
   hbos::CountSummary c;
   {
     py::gil_scoped_release release;
@@ -136,6 +135,13 @@ std::vector<py::array_t<Eigen::Index>> count_shard(const Array& x, const Array& 
     out.push_back(std::move(a));
   }
   return out;
+}
+
+std::vector<py::array_t<Eigen::Index>> count_shard(const Array& x, const Array& lo, const Array& hi,
+                                                   Eigen::Index rows, const std::string& bins,
+                                                   Eigen::Index shifts) {
+  const hbos::ShardedFit<double> plan(range_from(lo, hi, rows), default_params(bins, shifts));
+  return counts_of_shard(plan, as_matrix(x));
 }
 
 DefaultModel model_from_counts(const Array& lo, const Array& hi, Eigen::Index rows,
@@ -170,19 +176,7 @@ std::vector<py::array_t<Eigen::Index>> pyod_count_shard(const Array& x, const Ar
                                                         double tol, double contamination) {
   const hbos::PyodShardedFit<double> plan(range_from(lo, hi, rows),
                                           pyod_params(n_bins, false, alpha, tol, contamination));
-  const Strided m = as_matrix(x);
-  hbos::CountSummary c;
-  {
-    py::gil_scoped_release release;
-    c = plan.count(m);
-  }
-  std::vector<py::array_t<Eigen::Index>> out;
-  for (const auto& feature : c.counts) {
-    py::array_t<Eigen::Index> a(static_cast<py::ssize_t>(feature.size()));
-    std::copy(feature.begin(), feature.end(), a.mutable_data());
-    out.push_back(std::move(a));
-  }
-  return out;
+  return counts_of_shard(plan, as_matrix(x));
 }
 
 /// The PyOD mode's histograms merged from shards (hbos::PyodHistograms), with what rebuilds them

@@ -64,6 +64,16 @@ struct CountSummary {
 
 namespace detail {
 
+/// Pass 3's check that the merged counts are those of the rows and features a plan was built
+/// for. \throws InvalidArgument naming the mismatch.
+inline void require_counts_cover(const CountSummary& total, Eigen::Index rows,
+                                 Eigen::Index features) {
+  require(total.rows == rows, "the counts cover ", total.rows, " rows but the range summary ", rows,
+          " (a shard missing or counted twice?)");
+  require(static_cast<Eigen::Index>(total.counts.size()) == features, "the counts have ",
+          total.counts.size(), " features, the plan ", features);
+}
+
 /// Why feature j's spec cannot be fitted by shards, or empty when it can.
 inline std::string not_mergeable_reason(const FeatureSpec& spec) {
   const Binning& b = spec.binning;
@@ -246,10 +256,7 @@ class ShardedFit {
   /// Pass 3: the model of all rows from the total counts (every shard's counts merged).
   /// \throws InvalidArgument when the counts do not cover the rows the plan was built from.
   [[nodiscard]] Hbos<Scalar> model(const CountSummary& total) const {
-    detail::require(total.rows == rows_, "the counts cover ", total.rows,
-                    " rows but the range summary ", rows_, " (a shard missing or counted twice?)");
-    detail::require(static_cast<Eigen::Index>(total.counts.size()) == n_features(),
-                    "the counts have ", total.counts.size(), " features, the plan ", n_features());
+    detail::require_counts_cover(total, rows_, n_features());
     std::vector<Histogram<Scalar>> histograms;
     for (Eigen::Index j = 0; j < n_features(); ++j) {
       HistogramParts<Scalar> parts = binners_[static_cast<std::size_t>(j)].parts();

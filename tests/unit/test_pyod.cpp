@@ -5,6 +5,8 @@
 #include <hbos/model.hpp>
 #include <hbos/pyod.hpp>
 
+#include "../support/pyod_vectors.hpp"
+
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -22,6 +24,11 @@ template class hbos::PyodHbos<float>;
 namespace {
 
 using Eigen::Index;
+using hbos::test::numbers_in;
+using hbos::test::read_csv_matrix;
+using hbos::test::read_json_arrays;
+using hbos::test::read_text;
+using hbos::test::read_vector;
 using RowMajorMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 
 const std::string kDataDir = std::string(HBOS_TEST_DATA_DIR) + "/hbos_pyod/";
@@ -44,64 +51,6 @@ std::vector<Tag> tags() {
   out[2].params.tol = 0.2;
   out[3].name = "nbauto_a0.1_tol0.5";
   out[3].params.auto_bins = true;
-  return out;
-}
-
-std::string read_text(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) FAIL("cannot open " << path);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-/// Every number in a CSV or JSON text, in order (strtod gives back the exact doubles PyOD wrote).
-std::vector<double> numbers_in(const std::string& text) {
-  std::vector<double> out;
-  const char* p = text.c_str();
-  while (*p != '\0') {
-    if ((*p >= '0' && *p <= '9') || *p == '-' || *p == '.') {
-      char* end = nullptr;
-      out.push_back(std::strtod(p, &end));
-      p = end;
-    } else {
-      ++p;
-    }
-  }
-  return out;
-}
-
-Eigen::VectorXd read_vector(const std::string& path) {
-  const std::vector<double> v = numbers_in(read_text(path));
-  return Eigen::Map<const Eigen::VectorXd>(v.data(), static_cast<Index>(v.size()));
-}
-
-Eigen::MatrixXd read_csv_matrix(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) FAIL("cannot open " << path);
-  std::vector<std::vector<double>> rows;
-  for (std::string line; std::getline(in, line);) {
-    if (!line.empty()) rows.push_back(numbers_in(line));
-  }
-  Eigen::MatrixXd X(static_cast<Index>(rows.size()), static_cast<Index>(rows.front().size()));
-  for (Index i = 0; i < X.rows(); ++i) {
-    const auto& row = rows[static_cast<std::size_t>(i)];
-    REQUIRE(static_cast<Index>(row.size()) == X.cols());
-    for (Index j = 0; j < X.cols(); ++j) X(i, j) = row[static_cast<std::size_t>(j)];
-  }
-  return X;
-}
-
-/// A JSON array of d arrays of numbers.
-std::vector<std::vector<double>> read_json_arrays(const std::string& path) {
-  const std::string text = read_text(path);
-  std::vector<std::vector<double>> out;
-  std::size_t pos = text.find('[');
-  while ((pos = text.find('[', pos + 1)) != std::string::npos) {
-    const std::size_t end = text.find(']', pos);
-    out.push_back(numbers_in(text.substr(pos + 1, end - pos - 1)));
-    pos = end;
-  }
   return out;
 }
 

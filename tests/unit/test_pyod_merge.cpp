@@ -8,6 +8,8 @@
 
 #include "../support/mixed_features.hpp"
 
+#include "../support/pyod_vectors.hpp"
+
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -30,6 +32,9 @@ namespace {
 
 using Eigen::Index;
 using hbos::test::mixed_features;
+using hbos::test::read_csv_matrix;
+using hbos::test::read_json_arrays;
+using hbos::test::read_vector;
 using hbos::test::same_bits;
 
 template <class Scalar>
@@ -160,62 +165,6 @@ void check_sharded_equals_whole(std::uint32_t seed, Index n, Index d,
     }
     check_same_model(histograms.model(scores), whole, q);
   }
-}
-
-std::string read_text(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) FAIL("cannot open " << path);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-/// Every number in a CSV or JSON text, in order (strtod gives back the exact doubles PyOD wrote).
-std::vector<double> numbers_in(const std::string& text) {
-  std::vector<double> out;
-  const char* p = text.c_str();
-  while (*p != '\0') {
-    if ((*p >= '0' && *p <= '9') || *p == '-' || *p == '.') {
-      char* end = nullptr;
-      out.push_back(std::strtod(p, &end));
-      p = end;
-    } else {
-      ++p;
-    }
-  }
-  return out;
-}
-
-Eigen::MatrixXd read_csv_matrix(const std::string& path) {
-  std::istringstream in(read_text(path));
-  std::vector<std::vector<double>> rows;
-  for (std::string line; std::getline(in, line);)
-    if (!line.empty()) rows.push_back(numbers_in(line));
-  Eigen::MatrixXd X(static_cast<Index>(rows.size()), static_cast<Index>(rows.front().size()));
-  for (Index i = 0; i < X.rows(); ++i) {
-    const auto& row = rows[static_cast<std::size_t>(i)];
-    REQUIRE(static_cast<Index>(row.size()) == X.cols());
-    for (Index j = 0; j < X.cols(); ++j) X(i, j) = row[static_cast<std::size_t>(j)];
-  }
-  return X;
-}
-
-/// A JSON array of d arrays of numbers.
-std::vector<std::vector<double>> read_json_arrays(const std::string& path) {
-  const std::string text = read_text(path);
-  std::vector<std::vector<double>> out;
-  std::size_t pos = text.find('[');
-  while ((pos = text.find('[', pos + 1)) != std::string::npos) {
-    const std::size_t end = text.find(']', pos);
-    out.push_back(numbers_in(text.substr(pos + 1, end - pos - 1)));
-    pos = end;
-  }
-  return out;
-}
-
-Eigen::VectorXd read_vector(const std::string& path) {
-  const std::vector<double> v = numbers_in(read_text(path));
-  return Eigen::Map<const Eigen::VectorXd>(v.data(), static_cast<Index>(v.size()));
 }
 
 }  // namespace

@@ -206,10 +206,7 @@ class PyodShardedFit {
   /// Pass 3: the histograms of all rows from the total counts (every shard's counts merged).
   /// \throws InvalidArgument when the counts do not cover the rows the plan was built from.
   [[nodiscard]] PyodHistograms<Scalar> histograms(const CountSummary& total) const {
-    detail::require(total.rows == rows_, "the counts cover ", total.rows,
-                    " rows but the range summary ", rows_, " (a shard missing or counted twice?)");
-    detail::require(static_cast<Eigen::Index>(total.counts.size()) == n_features(),
-                    "the counts have ", total.counts.size(), " features, the plan ", n_features());
+    detail::require_counts_cover(total, rows_, n_features());
     for (Eigen::Index j = 0; j < n_features(); ++j) {
       const auto& c = total.counts[static_cast<std::size_t>(j)];
       const Eigen::Index B = edges_[static_cast<std::size_t>(j)].size() - 1;
