@@ -4,11 +4,13 @@
 // on bin edges, an angle, optionally a constant), and a bit-for-bit comparison of results.
 
 #include <Eigen/Core>
+#include <algorithm>
 
 #include <cstdint>
 #include <cstring>
 #include <random>
 #include <type_traits>
+#include <vector>
 
 namespace hbos::test {
 
@@ -46,6 +48,19 @@ bool same_bits(const Eigen::DenseBase<Derived>& a, const Eigen::DenseBase<Other>
   return da.rows() == db.rows() && da.cols() == db.cols() &&
          (da.size() == 0 || std::memcmp(da.data(), db.data(),
                                         sizeof(Scalar) * static_cast<std::size_t>(da.size())) == 0);
+}
+
+/// Row shards of x cut at `cuts` (any order, duplicates ignored; from 0 to x.rows()).
+template <class Scalar>
+std::vector<Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>> row_shards(
+    const Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>& x,
+    std::vector<Eigen::Index> cuts) {
+  std::sort(cuts.begin(), cuts.end());
+  cuts.erase(std::unique(cuts.begin(), cuts.end()), cuts.end());
+  std::vector<Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>> shards;
+  for (std::size_t i = 0; i + 1 < cuts.size(); ++i)
+    shards.push_back(x.middleRows(cuts[i], cuts[i + 1] - cuts[i]));
+  return shards;
 }
 
 }  // namespace hbos::test

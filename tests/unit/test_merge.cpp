@@ -11,6 +11,7 @@
 #include <cstring>
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 // Every member of the class template compiles for both scalar types.
@@ -68,12 +69,7 @@ std::vector<Matrix<Scalar>> split(const Matrix<Scalar>& x, std::mt19937& rng) {
   std::uniform_int_distribution<Eigen::Index> at(1, x.rows() - 1);
   for (int i = 1; i < k; ++i) cuts.push_back(at(rng));
   cuts.push_back(x.rows() - 1);  // a one-row shard at the end
-  std::sort(cuts.begin(), cuts.end());
-  cuts.erase(std::unique(cuts.begin(), cuts.end()), cuts.end());
-  std::vector<Matrix<Scalar>> shards;
-  for (std::size_t i = 0; i + 1 < cuts.size(); ++i)
-    shards.push_back(x.middleRows(cuts[i], cuts[i + 1] - cuts[i]));
-  return shards;
+  return hbos::test::row_shards(x, std::move(cuts));
 }
 
 template <class Scalar>

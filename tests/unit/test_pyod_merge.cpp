@@ -20,6 +20,7 @@
 #include <random>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 // Every member of the class templates compiles for both scalar types.
@@ -53,12 +54,7 @@ hbos::PyodParams pyod_params(Index n_bins, double alpha = 0.1, double tol = 0.5,
 /// Row shards of x cut at `cuts` (sorted, from 0 to x.rows()).
 template <class Scalar>
 std::vector<Matrix<Scalar>> cut(const Matrix<Scalar>& x, std::vector<Index> cuts) {
-  std::sort(cuts.begin(), cuts.end());
-  cuts.erase(std::unique(cuts.begin(), cuts.end()), cuts.end());
-  std::vector<Matrix<Scalar>> shards;
-  for (std::size_t i = 0; i + 1 < cuts.size(); ++i)
-    shards.push_back(x.middleRows(cuts[i], cuts[i + 1] - cuts[i]));
-  return shards;
+  return hbos::test::row_shards(x, std::move(cuts));
 }
 
 /// The splits every property is checked under: one shard, two uneven ones, random cuts with a
