@@ -632,9 +632,9 @@ class PyodHbos {
   }
 
   /// A feature's edges (detail::pyod_bin_edges) laid out on its look-up grid.
-  [[nodiscard]] static Feature lay_out(Eigen::VectorXd edges, Layout& layout) {
+  [[nodiscard]] static Feature lay_out(const Eigen::VectorXd& edges, Layout& layout) {
     Feature f;
-    f.edges = std::move(edges);
+    f.edges = edges;  // B + 1 values, once per feature
     const Eigen::Index B = f.bins();
     f.lo = f.edges[0];
     f.hi = f.edges[B];
