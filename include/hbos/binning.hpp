@@ -22,9 +22,18 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <limits>
+#include <memory>
+#include <new>
+#include <type_traits>
 #include <utility>
 #include <vector>
+
+#if defined(__SSE2__) || defined(_M_X64) || (defined(_M_IX86_FP) && _M_IX86_FP >= 2)
+#include <emmintrin.h>
+#define HBOS_DETAIL_BINNING_SSE2 1
+#endif
 
 #include "hbos/detail/column_view.hpp"
 #include "hbos/detail/scaling.hpp"
@@ -95,6 +104,31 @@ struct FeatureSpec {
 }
 
 namespace detail {
+
+/// std::allocator, except that a value-initialised element (what vector::resize appends) is left
+/// uninitialised. For scratch buffers that are written before they are read: zeroing
+/// Birgé–Rozenblac's buffer (then 2n doubles) cost a pass over 16 MB per column at n = 1e6.
+template <class T>
+struct UninitializedAllocator : std::allocator<T> {
+  template <class U>
+  struct rebind {
+    using other = UninitializedAllocator<U>;
+  };
+  UninitializedAllocator() = default;
+  template <class U>
+  UninitializedAllocator(const UninitializedAllocator<U>& /*other*/) noexcept {}
+  template <class U>
+  void construct(U* p) noexcept(std::is_nothrow_default_constructible_v<U>) {
+    ::new (static_cast<void*>(p)) U;
+  }
+  template <class U, class... Args>
+  void construct(U* p, Args&&... args) {
+    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
+};
+
+/// A vector of doubles that resize() does not zero.
+using ScratchDoubles = std::vector<double, UninitializedAllocator<double>>;
 
 inline void validate(const FeatureSpec& spec, Eigen::Index feature) {
   const Binning& b = spec.binning;
@@ -182,12 +216,13 @@ void validate_for_scalar(const FeatureSpec& spec, Eigen::Index feature) {
 class EdgeCounter {
  public:
   /// Buckets `n` values x[i * stride] of range [lo, hi] (hi > lo) into values[0, n); `values`
-  /// (grown to at least 2n) and `index` are reusable buffers (no allocation once grown).
+  /// (grown to at least n + the largest group of 256 cells, its old contents dropped when it
+  /// grows) and `index` are reusable buffers (no allocation once grown).
   /// `scale` (a power of two, detail::rule_scale) is applied to every value first, so that
   /// ranges which overflow or underflow a double still give u in [0, 1]; 1 changes nothing.
-  template <class Scalar>
+  template <class Scalar, class Values>
   EdgeCounter(const Scalar* x, Eigen::Index n, Eigen::Index stride, Scalar lo, Scalar hi,
-              std::vector<double>& values, std::vector<std::uint32_t>& index, double scale = 1.0)
+              Values& values, std::vector<std::uint32_t>& index, double scale = 1.0)
       : cells_(static_cast<std::size_t>(std::clamp<Eigen::Index>(n / 4, 64, 1 << 18))),
         dcells_(static_cast<double>(cells_)),
         index_(index) {
@@ -196,13 +231,12 @@ class EdgeCounter {
     const auto u_of = [&](Eigen::Index i) {
       return (static_cast<double>(x[i * stride]) * scale - base) * inv_range;
     };
-    // Counting sort by cell, in two scatters: first into coarse groups of 256 cells (through
-    // the second half of `values`), then each group, now small enough for L1, into its cells.
+    // Counting sort by cell, in two scatters: first into coarse groups of 256 cells, then each
+    // group, now small enough for L1, into its cells (in place, through a copy of the group).
     // Scattered straight into ~n/4 cells, nearly every write would miss the cache (the write
     // cursors span the whole array). u is recomputed in the second pass rather than stored: two
     // flops are cheaper than another n doubles of memory traffic.
     const auto un = static_cast<std::size_t>(n);
-    if (values.size() < 2 * un) values.resize(2 * un);
     constexpr std::size_t group_shift = 8;
     const std::size_t groups = ((cells_ - 1) >> group_shift) + 1;
     index_.resize(cells_ + 1 + groups);
@@ -211,15 +245,37 @@ class EdgeCounter {
     std::fill(cell_start, cell_start + cells_ + 1, 0U);
     for (Eigen::Index i = 0; i < n; ++i) ++cell_start[cell_of(u_of(i)) + 1];
     for (std::size_t c = 0; c < cells_; ++c) cell_start[c + 1] += cell_start[c];
-    // cell_start[c] is where cell c begins, in both halves: group g starts at cell_start[g * 256].
-    double* grouped = values.data() + un;
-    for (std::size_t g = 0; g < groups; ++g) group_cursor[g] = cell_start[g << group_shift];
+    // cell_start[c] is where cell c begins: group g starts at cell_start[g * 256].
+    const auto group_begin = [&](std::size_t g) {
+      return cell_start[std::min(cells_, g << group_shift)];
+    };
+    std::size_t largest_group = 0;
+    for (std::size_t g = 0; g < groups; ++g) {
+      group_cursor[g] = group_begin(g);
+      largest_group = std::max<std::size_t>(largest_group, group_begin(g + 1) - group_begin(g));
+    }
+    // values = [the bucketed values (n) | a copy of one group]. Grown without keeping the old
+    // contents (nothing in it is needed yet): no copy, and no zeroing with ScratchDoubles.
+    if (values.size() < un + largest_group) {
+      values.clear();
+      values.resize(un + largest_group);
+    }
+    double* bucketed = values.data();
+    double* group_copy = bucketed + un;
     for (Eigen::Index i = 0; i < n; ++i) {
       const double u = u_of(i);
-      grouped[group_cursor[cell_of(u) >> group_shift]++] = u;
+      bucketed[group_cursor[cell_of(u) >> group_shift]++] = u;
     }
-    // cell_start[c] serves as cell c's cursor; afterwards it holds the start of cell c + 1.
-    for (std::size_t i = 0; i < un; ++i) values[cell_start[cell_of(grouped[i])]++] = grouped[i];
+    // Each group into its cells, in place through a copy of the group (L1-sized for all but very
+    // uneven data). cell_start[c] serves as cell c's cursor; afterwards it holds the start of
+    // cell c + 1.
+    for (std::size_t g = 0, begin = 0; g < groups; ++g) {
+      const std::size_t end = group_cursor[g];  // the group's end, after the scatter above
+      std::copy(bucketed + begin, bucketed + end, group_copy);
+      for (std::size_t i = 0; i < end - begin; ++i)
+        bucketed[cell_start[cell_of(group_copy[i])]++] = group_copy[i];
+      begin = end;
+    }
     for (std::size_t c = cells_; c > 0; --c) cell_start[c] = cell_start[c - 1];
     cell_start[0] = 0;
     by_cell_ = values.data();
@@ -227,60 +283,92 @@ class EdgeCounter {
 
   /// Number of values with u b < k, for 0 < k < b.
   [[nodiscard]] std::uint32_t below(double b, double k) const {
-    const double p = position(b, k);
-    const double cell = std::floor(p);
-    const double frac = p - cell;
-    const auto m = std::min(cells_ - 1, static_cast<std::size_t>(static_cast<std::int64_t>(cell)));
+    return below_at(b, k, position(b, k));
+  }
+
+  /// Calls visit(b, k, below(b, k)) for every b = 2..b_max and k = 1..b-1: for each b in
+  /// increasing k, but overall chunk by chunk of cells (kChunkCells, about 32 KB of values, so
+  /// L1-resident while its edges are counted). Asked for b by b, the ~b_max^2 / 2 edges jump
+  /// across the whole array and nearly every one is a cache miss (most of the search time for
+  /// n = 1e6); chunk by chunk the values are read in one sequential sweep. Each b keeps its next
+  /// k and that edge's position: a b with no edge in the chunk costs one comparison.
+  template <class Visit>
+  void for_each_edge(Eigen::Index b_max, Visit&& visit) {
+    const auto nb = static_cast<std::size_t>(std::max<Eigen::Index>(b_max, 1)) + 1;
+    // index_ = [cell_start (M + 1) | per b: its next k (b_max + 1) | per b: the position of
+    // that edge, a double in two slots (2 (b_max + 1))].
+    index_.resize(cells_ + 1 + 3 * nb);
+    std::uint32_t* next_k = index_.data() + cells_ + 1;
+    std::uint32_t* next_p = next_k + nb;
+    const auto load_p = [&](std::size_t b) {
+      double p;
+      std::memcpy(&p, next_p + 2 * b, sizeof p);
+      return p;
+    };
+    const auto store_p = [&](std::size_t b, double p) {
+      std::memcpy(next_p + 2 * b, &p, sizeof p);
+    };
+    for (std::size_t b = 2; b < nb; ++b) {
+      next_k[b] = 1;
+      store_p(b, position(static_cast<double>(b), 1.0));
+    }
+    constexpr double done = std::numeric_limits<double>::infinity();
+    for (std::size_t begin = 0; begin < cells_; begin += kChunkCells) {
+      // An edge lies in this chunk or an earlier one iff its cell min(M - 1, floor(p)) is below
+      // `end`, i.e. iff p < end (p < M always, and end is a whole number).
+      const double end = static_cast<double>(std::min(cells_, begin + kChunkCells));
+      for (std::size_t b = 2; b < nb; ++b) {
+        double p = load_p(b);
+        if (!(p < end)) continue;
+        const auto ub = static_cast<std::uint32_t>(b);
+        const double db = static_cast<double>(b);
+        std::uint32_t k = next_k[b];
+        do {
+          visit(ub, k, below_at(db, static_cast<double>(k), p));
+          ++k;
+          p = k < ub ? position(db, static_cast<double>(k)) : done;
+        } while (p < end);
+        next_k[b] = k;
+        store_p(b, p);
+      }
+    }
+  }
+
+ private:
+  static constexpr std::size_t kChunkCells = 1024;
+
+  /// Where edge k/b lies, in cell units.
+  [[nodiscard]] double position(double b, double k) const { return k * dcells_ / b; }
+
+  /// below(b, k) for the edge at p = position(b, k).
+  [[nodiscard]] std::uint32_t below_at(double b, double k, double p) const {
+    // p > 0: truncation is floor (and, unlike std::floor, one instruction in SSE2).
+    const auto cell = static_cast<std::int64_t>(p);
+    const double frac = p - static_cast<double>(cell);
+    const auto m = std::min(cells_ - 1, static_cast<std::size_t>(cell));
     const bool near_boundary = frac < 1e-4 || frac > 1.0 - 1e-4;
     const std::size_t first_cell = near_boundary && m > 0 ? m - 1 : m;
     const std::size_t end_cell = std::min(cells_, near_boundary ? m + 2 : m + 1);
     const std::uint32_t first = index_[first_cell];
     const std::uint32_t last = index_[end_cell];
     std::uint32_t count = first;
-    for (std::uint32_t i = first; i < last; ++i) count += by_cell_[i] * b < k ? 1U : 0U;
+    std::uint32_t i = first;
+#ifdef HBOS_DETAIL_BINNING_SSE2
+    // Two values at a time: the same products and comparisons as the scalar loop (mulpd rounds
+    // as mulsd does); each true lane adds 1 (its all-ones mask is -1).
+    const __m128d vb = _mm_set1_pd(b);
+    const __m128d vk = _mm_set1_pd(k);
+    __m128i below_k = _mm_setzero_si128();
+    for (; last - i >= 2; i += 2) {
+      const __m128d lt = _mm_cmplt_pd(_mm_mul_pd(_mm_loadu_pd(by_cell_ + i), vb), vk);
+      below_k = _mm_sub_epi64(below_k, _mm_castpd_si128(lt));
+    }
+    below_k = _mm_add_epi64(below_k, _mm_unpackhi_epi64(below_k, below_k));
+    count += static_cast<std::uint32_t>(_mm_cvtsi128_si32(below_k));
+#endif
+    for (; i < last; ++i) count += by_cell_[i] * b < k ? 1U : 0U;
     return count;
   }
-
-  /// Calls visit(b, k, below(b, k)) for every b = 2..b_max and k = 1..b-1: for each b in
-  /// increasing k, but overall in increasing order of the edge's cell. Asked for b by b, the
-  /// ~b_max^2 / 2 edges jump across the whole array and nearly every one is a cache miss (most of
-  /// the search time for n = 1e6); in cell order the values are read in one sequential sweep.
-  /// The order is kept by a bucket queue: each b waits in the bucket of its next edge's cell.
-  template <class Visit>
-  void for_each_edge(Eigen::Index b_max, Visit&& visit) {
-    constexpr std::uint32_t none = std::numeric_limits<std::uint32_t>::max();
-    const auto nb = static_cast<std::size_t>(std::max<Eigen::Index>(b_max, 1)) + 1;
-    // index_ = [cell_start (M + 1) | head of each cell's bucket (M) | per b: next b in its
-    // bucket, its next k (2 (b_max + 1))].
-    index_.resize(2 * cells_ + 1 + 2 * nb);
-    std::uint32_t* head = index_.data() + cells_ + 1;
-    std::uint32_t* link = head + cells_;
-    std::uint32_t* next_k = link + nb;
-    std::fill(head, head + cells_, none);
-    auto enqueue = [&](std::uint32_t b, std::uint32_t k) {
-      const auto m = std::min(
-          cells_ - 1,
-          static_cast<std::size_t>(static_cast<std::int64_t>(position(static_cast<double>(b), k))));
-      next_k[b] = k;
-      link[b] = head[m];
-      head[m] = b;
-    };
-    for (std::size_t b = 2; b < nb; ++b) enqueue(static_cast<std::uint32_t>(b), 1);
-    for (std::size_t m = 0; m < cells_; ++m) {
-      // A b whose next edge falls in the same cell re-enters this bucket and is taken again.
-      while (head[m] != none) {
-        const std::uint32_t b = head[m];
-        head[m] = link[b];
-        const std::uint32_t k = next_k[b];
-        visit(b, k, below(static_cast<double>(b), static_cast<double>(k)));
-        if (k + 1 < b) enqueue(b, k + 1);
-      }
-    }
-  }
-
- private:
-  /// Where edge k/b lies, in cell units.
-  [[nodiscard]] double position(double b, double k) const { return k * dcells_ / b; }
   /// Cells by truncation; through int64 because double -> uint64 has no single SSE2
   /// instruction (u * M lies in [0, M] here).
   [[nodiscard]] std::size_t cell_of(double u) const {
@@ -289,7 +377,7 @@ class EdgeCounter {
 
   std::size_t cells_;
   double dcells_;
-  // [cell_start (M + 1) | scratch]: the sort's group cursors, then for_each_edge's queue.
+  // [cell_start (M + 1) | scratch]: the sort's group cursors, then for_each_edge's per-b state.
   std::vector<std::uint32_t>& index_;
   const double* by_cell_ = nullptr;
 };
@@ -302,10 +390,10 @@ class EdgeCounter {
 /// search is O(n) in total (plus one log per bin).
 ///
 /// `values` and `index` are reusable buffers (no allocation once grown).
-template <class Scalar>
+template <class Scalar, class Values>
 [[nodiscard]] Eigen::Index birge_rozenblac_bins(const Scalar* x, Eigen::Index n,
                                                 Eigen::Index stride, Scalar lo, Scalar hi,
-                                                Eigen::Index max_bins, std::vector<double>& values,
+                                                Eigen::Index max_bins, Values& values,
                                                 std::vector<std::uint32_t>& index,
                                                 double scale = 1.0) {
   if (!(hi > lo) || n < 4) return 1;
@@ -314,10 +402,14 @@ template <class Scalar>
       std::max<Eigen::Index>(1, static_cast<Eigen::Index>(std::sqrt(static_cast<double>(n)))));
   // Per b: the running sum of N_k ln N_k over its bins so far and the cumulative count at its
   // last edge; then a table of N ln N. They live in `values` after the n bucketed values (where
-  // the sort kept its intermediate copy).
+  // the sort kept its copy of a group).
   const auto nb = static_cast<std::size_t>(b_max) + 1;
   const auto un = static_cast<std::size_t>(n);
-  values.resize(std::max(values.size(), un + std::max(un, 2 * nb + 4096)));
+  // Grown before the counter fills it (the counter may grow it further, never shrink it).
+  if (values.size() < un + 2 * nb + 4096) {
+    values.clear();
+    values.resize(un + 2 * nb + 4096);
+  }
   EdgeCounter counter(x, n, stride, lo, hi, values, index, scale);
   double* sum_n_log_n = values.data() + un;
   double* cumulative = sum_n_log_n + nb;
@@ -377,7 +469,7 @@ struct EdgeLayout {
 /// The bin-count rules' reusable buffers (Birgé–Rozenblac's bucketed values and cells) and the
 /// prefix sums of the linear-time averaged shifted histogram.
 struct RuleScratch {
-  std::vector<double> values;
+  ScratchDoubles values;
   std::vector<std::uint32_t> cells;
   std::vector<std::int64_t> sums;
 };

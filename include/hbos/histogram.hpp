@@ -135,7 +135,7 @@ class Histogram {
   void release_fit_buffers() {
     std::vector<std::int64_t>().swap(rule_scratch_.sums);
     std::vector<std::uint32_t>().swap(rule_scratch_.cells);
-    std::vector<double>().swap(rule_scratch_.values);
+    detail::ScratchDoubles().swap(rule_scratch_.values);
   }
 
   /// The parts this histogram is built from (hbos/histogram_parts.hpp): what model files store
