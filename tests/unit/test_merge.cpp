@@ -6,6 +6,7 @@
 #include <hbos/model_file.hpp>
 
 #include "../support/mixed_features.hpp"
+#include "../support/shard_merges.hpp"
 
 #include <catch2/catch.hpp>
 #include <cstring>
@@ -85,19 +86,10 @@ void check_merged_equals_whole(std::uint32_t seed, const hbos::HbosParams& param
   CHECK(same_bits(merged.score(q), whole.score(q)));
 
   // The summaries reduce in any order (a tree, reversed) to the same model.
-  hbos::RangeSummary<Scalar> range;
-  for (auto it = shards.rbegin(); it != shards.rend(); ++it)
-    range = hbos::merge(hbos::summarize_range(*it), range);
+  const auto range = hbos::test::range_merged_in_reverse(shards);
   const hbos::ShardedFit<Scalar> plan(range, params);
-  std::vector<hbos::CountSummary> counts;
-  for (const auto& s : shards) counts.push_back(plan.count(s));
-  while (counts.size() > 1) {
-    std::vector<hbos::CountSummary> next;
-    for (std::size_t i = 0; i < counts.size(); i += 2)
-      next.push_back(i + 1 < counts.size() ? hbos::merge(counts[i + 1], counts[i]) : counts[i]);
-    counts = next;
-  }
-  CHECK(hbos::to_model_text(plan.model(counts.front())) == hbos::to_model_text(whole));
+  const hbos::CountSummary total = hbos::test::counts_merged_as_tree(plan, shards);
+  CHECK(hbos::to_model_text(plan.model(total)) == hbos::to_model_text(whole));
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include <hbos/pyod/model_file.hpp>
 
 #include "../support/mixed_features.hpp"
+#include "../support/shard_merges.hpp"
 
 #include "../support/pyod_vectors.hpp"
 
@@ -137,19 +138,10 @@ void check_sharded_equals_whole(std::uint32_t seed, Index n, Index d,
     check_same_model(hbos::fit_sharded(shards, params), whole, q);
 
     // The summaries reduce in any order (reversed, a tree) to the same model.
-    hbos::RangeSummary<Scalar> range;
-    for (auto it = shards.rbegin(); it != shards.rend(); ++it)
-      range = hbos::merge(hbos::summarize_range(*it), range);
+    const auto range = hbos::test::range_merged_in_reverse(shards);
     const hbos::PyodShardedFit<Scalar> plan(range, params);
-    std::vector<hbos::CountSummary> counts;
-    for (const auto& s : shards) counts.push_back(plan.count(s));
-    while (counts.size() > 1) {
-      std::vector<hbos::CountSummary> next;
-      for (std::size_t i = 0; i < counts.size(); i += 2)
-        next.push_back(i + 1 < counts.size() ? hbos::merge(counts[i + 1], counts[i]) : counts[i]);
-      counts = next;
-    }
-    const hbos::PyodHistograms<Scalar> histograms = plan.histograms(counts.front());
+    const hbos::CountSummary total = hbos::test::counts_merged_as_tree(plan, shards);
+    const hbos::PyodHistograms<Scalar> histograms = plan.histograms(total);
     CHECK(histograms.rows() == n);
     CHECK(same_bits(histograms.decision_function(q), whole.decision_function(q)));
     // The scoring pass, shard by shard, gives the training outputs.
