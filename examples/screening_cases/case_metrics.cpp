@@ -11,11 +11,6 @@ namespace hbos::cases {
 
 namespace {
 
-double pct(long long part, long long whole) {
-  return whole == 0 ? std::numeric_limits<double>::quiet_NaN()
-                    : 100.0 * static_cast<double>(part) / static_cast<double>(whole);
-}
-
 std::size_t index_of(const std::vector<NamedScreen>& strategies, const char* name) {
   for (std::size_t k = 0; k < strategies.size(); ++k)
     if (strategies[k].name == name) return k;
@@ -23,10 +18,6 @@ std::size_t index_of(const std::vector<NamedScreen>& strategies, const char* nam
 }
 
 }  // namespace
-
-double Tally::static_dropped_pct() const { return pct(static_dropped, statics); }
-double Tally::dynamic_kept_pct() const { return pct(dynamic_kept, dynamics); }
-double Tally::gross_kept_pct() const { return pct(gross_kept, gross); }
 
 double quantile_of(std::vector<double> values, double q) {
   if (values.empty()) return std::numeric_limits<double>::quiet_NaN();
@@ -82,6 +73,17 @@ CaseMetrics measure_case(const hbos_test::ScreeningCase& c,
     }
   }
   return m;
+}
+
+void measure_equal_loss(const hbos_test::ScreeningCase& c,
+                        const std::vector<NamedScreen>& strategies, CaseMetrics& m) {
+  const double default_loss = m.tallies[index_of(strategies, "default")].static_dropped_pct();
+  const double chi2_loss = m.tallies[index_of(strategies, "chi2")].static_dropped_pct();
+  m.equal_loss.clear();
+  for (const hbos_test::GateSetting& g : hbos_test::gate_settings()) {
+    m.equal_loss.push_back({g.screen, g.setting, hbos_test::at_static_loss(c, g, default_loss),
+                            hbos_test::at_static_loss(c, g, chi2_loss)});
+  }
 }
 
 Verdict acceptance(const CaseMetrics& m, const std::vector<NamedScreen>& strategies) {

@@ -5,6 +5,7 @@
 /// over the case's pairs); per case how often the rough pose absorbed the person and the static
 /// noise tail; and the acceptance rule of issue 7 item 7.
 
+#include "equal_loss.hpp"
 #include "eval_strategies.hpp"
 #include "screening_cases.hpp"
 
@@ -13,15 +14,16 @@
 
 namespace hbos::cases {
 
-/// Counts of one strategy on one case. Static = neither dynamic nor gross.
-struct Tally {
-  long long statics = 0, static_dropped = 0;
-  long long dynamics = 0, dynamic_kept = 0;
-  long long gross = 0, gross_kept = 0;
+/// Counts of one strategy on one case (tests/support/equal_loss.hpp). Static = neither dynamic
+/// nor gross; each percentage is NaN when there is no match of its kind.
+using Tally = hbos_test::CaseTally;
 
-  [[nodiscard]] double static_dropped_pct() const;  ///< NaN when there is no static match
-  [[nodiscard]] double dynamic_kept_pct() const;    ///< NaN when there is no dynamic match
-  [[nodiscard]] double gross_kept_pct() const;      ///< NaN when there is no gross mismatch
+/// A baseline swept to the default's static loss on a case (tests/support/equal_loss.hpp).
+struct EqualLoss {
+  std::string screen;                  ///< chi2, fixed, quantile or mad
+  std::string setting;                 ///< what the swept value is
+  hbos_test::AtStaticLoss at_default;  ///< at the default's static loss
+  hbos_test::AtStaticLoss at_chi2;     ///< at chi2's (5.991) static loss
 };
 
 /// chi2's 95 % gate on a 2-dof whitened residual [px/sigma]: sqrt(5.991).
@@ -42,11 +44,19 @@ struct CaseMetrics {
   int pairs_with_person = 0, pairs_absorbed = 0;
   /// Whitened |r| / sigma of the static matches under the rough pose [px/sigma].
   std::vector<double> static_whitened;
+  /// Each baseline at equal static loss (filled by measure_equal_loss).
+  std::vector<EqualLoss> equal_loss;
 };
 
 /// Screens every pair of `c` with every strategy (single round) and counts.
 [[nodiscard]] CaseMetrics measure_case(const hbos_test::ScreeningCase& c,
                                        const std::vector<NamedScreen>& strategies);
+
+/// Sweeps each baseline of hbos_test::gate_settings() on `c` to the default's and to chi2's
+/// static loss in `m` (which needs strategies named default and chi2) and stores the results in
+/// m.equal_loss.
+void measure_equal_loss(const hbos_test::ScreeningCase& c,
+                        const std::vector<NamedScreen>& strategies, CaseMetrics& m);
 
 /// The acceptance rule of one case (issue 7 item 7).
 struct Verdict {

@@ -52,6 +52,63 @@ nlohmann::ordered_json read_manifest(const std::string& dir) {
   return m;
 }
 
+// "Beyond the curve": the default keeps fewer dynamics than the baseline swept to its static
+// loss.
+std::string beyond(const CaseMetrics& m, const hbos::cases::EqualLoss& e, double default_kept) {
+  const double kept = e.at_default.tally.dynamic_kept_pct();
+  if (std::isnan(e.at_default.value)) return "unreachable";
+  std::string c = fmt::format("{} ({:.3g})", cell(kept), e.at_default.value);
+  if (!std::isnan(default_kept) && !std::isnan(kept) && !m.static_sequence)
+    c += default_kept < kept ? " ✓" : " ✗";
+  return c;
+}
+
+std::string equal_loss_markdown(const std::vector<CaseMetrics>& all,
+                                const std::vector<NamedScreen>& strategies) {
+  std::size_t default_at = 0;
+  while (default_at < strategies.size() && strategies[default_at].name != "default") ++default_at;
+  if (all.empty() || all.front().equal_loss.empty() || default_at == strategies.size()) return {};
+  std::string md =
+      "\n#### The baselines at the default's static loss\n\n"
+      "Each baseline's one setting (in brackets: chi2's threshold, the fixed gate's pixels, the "
+      "quantile, MAD's k) swept per case to the most aggressive value whose pooled static loss "
+      "does not exceed the default's; cells: dynamic matches kept % at that setting (✓: the "
+      "default keeps fewer). The sweep sees the labels, which favours the baseline. Last "
+      "column: the quantile gate swept to chi2's own static loss.\n\n| case | default |";
+  for (const auto& e : all.front().equal_loss) md += " " + e.screen + " at default's loss |";
+  md += " quantile at chi2's loss |\n|---|---|";
+  for (std::size_t k = 0; k <= all.front().equal_loss.size(); ++k) md += "---|";
+  md += "\n";
+  int with_person = 0, beyond_all = 0;
+  for (const CaseMetrics& m : all) {
+    const hbos::cases::Tally& d = m.tallies[default_at];
+    const double kept = d.dynamic_kept_pct();
+    md += fmt::format("| {} | {} / {} |", m.name, cell(d.static_dropped_pct()), cell(kept));
+    bool all_beaten = !std::isnan(kept);
+    for (const auto& e : m.equal_loss) {
+      md += " " + beyond(m, e, kept) + " |";
+      const double other = e.at_default.tally.dynamic_kept_pct();
+      all_beaten = all_beaten && !std::isnan(other) && kept < other;
+    }
+    const hbos::cases::EqualLoss* q = nullptr;
+    for (const auto& e : m.equal_loss)
+      if (e.screen == "quantile") q = &e;
+    md += q == nullptr || std::isnan(q->at_chi2.value)
+              ? std::string(" - |\n")
+              : fmt::format(" {} / {} ({:.3g}) |\n", cell(q->at_chi2.tally.static_dropped_pct()),
+                            cell(q->at_chi2.tally.dynamic_kept_pct()), q->at_chi2.value);
+    if (!std::isnan(kept)) {
+      ++with_person;
+      beyond_all += all_beaten ? 1 : 0;
+    }
+  }
+  md += fmt::format(
+      "\nIn {} of {} cases with dynamic matches the default keeps fewer than every baseline "
+      "at its static loss.\n",
+      beyond_all, with_person);
+  return md;
+}
+
 std::string markdown(const std::vector<CaseMetrics>& all, const nlohmann::ordered_json& cases,
                      const std::vector<NamedScreen>& strategies) {
   std::string md = "#### Screens on the labelled real residual cases (single round)\n\n";
@@ -84,6 +141,7 @@ std::string markdown(const std::vector<CaseMetrics>& all, const nlohmann::ordere
     md += fmt::format("| {} | {} | {} |\n", m.name, v.pass ? "pass" : "FAIL", v.reason);
   }
   md += fmt::format("\n{} of {} cases pass.\n", passed, all.size());
+  md += equal_loss_markdown(all, strategies);
   md +=
       "\n#### The rough pose and the noise\n\n"
       "Absorbed: pairs with >= 10 dynamic matches whose median whitened person residual under "
@@ -135,6 +193,17 @@ nlohmann::ordered_json to_json(const std::vector<CaseMetrics>& all,
     }
     const auto v = hbos::cases::acceptance(m, strategies);
     c["acceptance"] = {{"pass", v.pass}, {"reason", v.reason}};
+    for (const auto& e : m.equal_loss) {
+      const auto at = [&](const hbos_test::AtStaticLoss& a) {
+        return nlohmann::ordered_json{{"target_static_dropped_pct", number(a.target_pct)},
+                                      {"value", number(a.value)},
+                                      {"static_dropped_pct", number(a.tally.static_dropped_pct())},
+                                      {"dynamic_kept_pct", number(a.tally.dynamic_kept_pct())},
+                                      {"gross_kept_pct", number(a.tally.gross_kept_pct())}};
+      };
+      c["equal_loss"][e.screen] = {
+          {"setting", e.setting}, {"at_default", at(e.at_default)}, {"at_chi2", at(e.at_chi2)}};
+    }
     c["pairs_with_person"] = m.pairs_with_person;
     c["pairs_absorbed"] = m.pairs_absorbed;
     c["static_whitened_quantiles"] = {
@@ -168,6 +237,7 @@ int run(int argc, char** argv) {
     const auto loaded = hbos_test::load_screening_case(
         (fs::path(dir) / c["dir"].get<std::string>()).string(), pose);
     CaseMetrics m = hbos::cases::measure_case(loaded, strategies);
+    hbos::cases::measure_equal_loss(loaded, strategies, m);
     m.name = c["name"].get<std::string>();
     m.scene = c["dir"].get<std::string>();
     m.rough_pose = c["rough_pose"].get<std::string>();
