@@ -79,15 +79,21 @@ void measure_equal_loss(const hbos_test::ScreeningCase& c,
                         const std::vector<NamedScreen>& strategies, CaseMetrics& m) {
   const double default_loss = m.tallies[index_of(strategies, "default")].static_dropped_pct();
   const double chi2_loss = m.tallies[index_of(strategies, "chi2")].static_dropped_pct();
+  hbos::ReprojectionScreend with_history(strategies[index_of(strategies, "default")].config);
+  m.default_with_history = hbos_test::tally_case_with_history(c, with_history);
+  const double history_loss = m.default_with_history.static_dropped_pct();
   m.equal_loss.clear();
   for (const hbos_test::GateSetting& g : hbos_test::gate_settings()) {
     m.equal_loss.push_back({g.screen, g.setting, hbos_test::at_static_loss(c, g, default_loss),
-                            hbos_test::at_static_loss(c, g, chi2_loss)});
+                            hbos_test::at_static_loss(c, g, chi2_loss),
+                            hbos_test::at_static_loss(c, g, history_loss)});
   }
 }
 
-Verdict acceptance(const CaseMetrics& m, const std::vector<NamedScreen>& strategies) {
-  const Tally& d = m.tallies[index_of(strategies, "default")];
+namespace {
+
+Verdict acceptance_of(const Tally& d, const CaseMetrics& m,
+                      const std::vector<NamedScreen>& strategies) {
   const Tally& chi2 = m.tallies[index_of(strategies, "chi2")];
   const Tally& q = m.tallies[index_of(strategies, "quantile")];
   Verdict v;
@@ -122,6 +128,16 @@ Verdict acceptance(const CaseMetrics& m, const std::vector<NamedScreen>& strateg
                                  : "no dynamic match: static loss <= chi2";
   }
   return v;
+}
+
+}  // namespace
+
+Verdict acceptance(const CaseMetrics& m, const std::vector<NamedScreen>& strategies) {
+  return acceptance_of(m.tallies[index_of(strategies, "default")], m, strategies);
+}
+
+Verdict acceptance_with_history(const CaseMetrics& m, const std::vector<NamedScreen>& strategies) {
+  return acceptance_of(m.default_with_history, m, strategies);
 }
 
 }  // namespace hbos::cases

@@ -24,6 +24,8 @@ struct EqualLoss {
   std::string setting;                 ///< what the swept value is
   hbos_test::AtStaticLoss at_default;  ///< at the default's static loss
   hbos_test::AtStaticLoss at_chi2;     ///< at chi2's (5.991) static loss
+  /// at the static loss of the default screened with the caller's outlier history
+  hbos_test::AtStaticLoss at_default_with_history;
 };
 
 /// chi2's 95 % gate on a 2-dof whitened residual [px/sigma]: sqrt(5.991).
@@ -44,7 +46,10 @@ struct CaseMetrics {
   int pairs_with_person = 0, pairs_absorbed = 0;
   /// Whitened |r| / sigma of the static matches under the rough pose [px/sigma].
   std::vector<double> static_whitened;
-  /// Each baseline at equal static loss (filled by measure_equal_loss).
+  /// The default with the outlier history a tracker with memory passes in (pairs screened in
+  /// order; hbos_test::tally_case_with_history), and each baseline at equal static loss (both
+  /// filled by measure_equal_loss).
+  Tally default_with_history;
   std::vector<EqualLoss> equal_loss;
 };
 
@@ -52,9 +57,10 @@ struct CaseMetrics {
 [[nodiscard]] CaseMetrics measure_case(const hbos_test::ScreeningCase& c,
                                        const std::vector<NamedScreen>& strategies);
 
-/// Sweeps each baseline of hbos_test::gate_settings() on `c` to the default's and to chi2's
-/// static loss in `m` (which needs strategies named default and chi2) and stores the results in
-/// m.equal_loss.
+/// Screens `c` with the default and the caller's outlier history (m.default_with_history), then
+/// sweeps each baseline of hbos_test::gate_settings() to the default's static loss with and
+/// without that history and to chi2's static loss in `m` (which needs strategies named default
+/// and chi2); the results go to m.equal_loss.
 void measure_equal_loss(const hbos_test::ScreeningCase& c,
                         const std::vector<NamedScreen>& strategies, CaseMetrics& m);
 
@@ -69,6 +75,10 @@ struct Verdict {
 /// without dynamic matches, e.g. an exact mask: the static part only). Needs strategies named
 /// default, chi2 and quantile.
 [[nodiscard]] Verdict acceptance(const CaseMetrics& m, const std::vector<NamedScreen>& strategies);
+/// The same rule for the default screened with the caller's outlier history
+/// (m.default_with_history) in place of the default's single-pair counts.
+[[nodiscard]] Verdict acceptance_with_history(const CaseMetrics& m,
+                                              const std::vector<NamedScreen>& strategies);
 
 /// The q-quantile (0..1) of `values` (sorted copy, linear interpolation); NaN when empty.
 [[nodiscard]] double quantile_of(std::vector<double> values, double q);

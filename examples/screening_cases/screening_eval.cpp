@@ -52,15 +52,58 @@ nlohmann::ordered_json read_manifest(const std::string& dir) {
   return m;
 }
 
-// "Beyond the curve": the default keeps fewer dynamics than the baseline swept to its static
-// loss.
-std::string beyond(const CaseMetrics& m, const hbos::cases::EqualLoss& e, double default_kept) {
-  const double kept = e.at_default.tally.dynamic_kept_pct();
-  if (std::isnan(e.at_default.value)) return "unreachable";
-  std::string c = fmt::format("{} ({:.3g})", cell(kept), e.at_default.value);
-  if (!std::isnan(default_kept) && !std::isnan(kept) && !m.static_sequence)
-    c += default_kept < kept ? " ✓" : " ✗";
+// One baseline at a screen's static loss: the dynamics it keeps (its setting), and whether the
+// screen, keeping `kept` %, keeps fewer (✓) or not (✗).
+std::string at_loss_cell(const hbos_test::AtStaticLoss& at, double kept, bool static_sequence) {
+  if (std::isnan(at.value)) return "unreachable";
+  const double other = at.tally.dynamic_kept_pct();
+  std::string c = fmt::format("{} ({:.3g})", cell(other), at.value);
+  if (!std::isnan(kept) && !std::isnan(other) && !static_sequence) c += kept < other ? " ✓" : " ✗";
   return c;
+}
+
+// A table of the baselines at one screen's static loss: `tally` picks the screen's counts in a
+// case, `at` the baselines' sweep to its loss.
+template <class Tally, class At>
+std::string equal_loss_table(const std::vector<CaseMetrics>& all, const std::string& screen,
+                             Tally tally, At at, bool quantile_at_chi2) {
+  std::string md = "| case | " + screen + " |";
+  for (const auto& e : all.front().equal_loss) md += " " + e.screen + " at its loss |";
+  md += quantile_at_chi2 ? " quantile at chi2's loss |\n|---|---|" : "\n|---|---|";
+  for (std::size_t k = 0; k < all.front().equal_loss.size() + (quantile_at_chi2 ? 1 : 0); ++k)
+    md += "---|";
+  md += "\n";
+  int with_person = 0, beyond_all = 0;
+  for (const CaseMetrics& m : all) {
+    const hbos::cases::Tally& d = tally(m);
+    const double kept = d.dynamic_kept_pct();
+    md += fmt::format("| {} | {} / {} |", m.name, cell(d.static_dropped_pct()), cell(kept));
+    bool all_beaten = !std::isnan(kept);
+    const hbos::cases::EqualLoss* quantile = nullptr;
+    for (const auto& e : m.equal_loss) {
+      md += " " + at_loss_cell(at(e), kept, m.static_sequence) + " |";
+      const double other = at(e).tally.dynamic_kept_pct();
+      all_beaten = all_beaten && !std::isnan(other) && kept < other;
+      if (e.screen == "quantile") quantile = &e;
+    }
+    if (quantile_at_chi2) {
+      const hbos_test::AtStaticLoss* q = quantile == nullptr ? nullptr : &quantile->at_chi2;
+      md += q == nullptr || std::isnan(q->value)
+                ? std::string(" - |")
+                : fmt::format(" {} / {} ({:.3g}) |", cell(q->tally.static_dropped_pct()),
+                              cell(q->tally.dynamic_kept_pct()), q->value);
+    }
+    md += "\n";
+    if (!std::isnan(kept)) {
+      ++with_person;
+      beyond_all += all_beaten ? 1 : 0;
+    }
+  }
+  md += fmt::format(
+      "\nIn {} of {} cases with dynamic matches, {} keeps fewer than every baseline at its "
+      "static loss.\n",
+      beyond_all, with_person, screen);
+  return md;
 }
 
 std::string equal_loss_markdown(const std::vector<CaseMetrics>& all,
@@ -74,38 +117,31 @@ std::string equal_loss_markdown(const std::vector<CaseMetrics>& all,
       "quantile, MAD's k) swept per case to the most aggressive value whose pooled static loss "
       "does not exceed the default's; cells: dynamic matches kept % at that setting (✓: the "
       "default keeps fewer). The sweep sees the labels, which favours the baseline. Last "
-      "column: the quantile gate swept to chi2's own static loss.\n\n| case | default |";
-  for (const auto& e : all.front().equal_loss) md += " " + e.screen + " at default's loss |";
-  md += " quantile at chi2's loss |\n|---|---|";
-  for (std::size_t k = 0; k <= all.front().equal_loss.size(); ++k) md += "---|";
-  md += "\n";
-  int with_person = 0, beyond_all = 0;
+      "column: the quantile gate swept to chi2's own static loss.\n\n";
+  md += equal_loss_table(
+      all, "default", [&](const CaseMetrics& m) -> const auto& { return m.tallies[default_at]; },
+      [](const hbos::cases::EqualLoss& e) -> const auto& { return e.at_default; }, true);
+  md +=
+      "\n#### Persistence: the default with the caller's outlier history\n\n"
+      "The pairs screened in order; each track keeps the forgetting-weighted (0.8) share of its "
+      "screenings that rejected it, as the map tracker does, and passes it as the match's "
+      "outlier history (HistoryEvidence fires above 0.5). The baselines are swept to this "
+      "screen's static loss.\n\n";
+  md += equal_loss_table(
+      all, "default + history",
+      [](const CaseMetrics& m) -> const auto& { return m.default_with_history; },
+      [](const hbos::cases::EqualLoss& e) -> const auto& { return e.at_default_with_history; },
+      false);
+  md +=
+      "\nThe acceptance rule (issue 7 item 7) with these counts in place of the default's:\n\n"
+      "| case | result | why |\n|---|---|---|\n";
+  int passed = 0;
   for (const CaseMetrics& m : all) {
-    const hbos::cases::Tally& d = m.tallies[default_at];
-    const double kept = d.dynamic_kept_pct();
-    md += fmt::format("| {} | {} / {} |", m.name, cell(d.static_dropped_pct()), cell(kept));
-    bool all_beaten = !std::isnan(kept);
-    for (const auto& e : m.equal_loss) {
-      md += " " + beyond(m, e, kept) + " |";
-      const double other = e.at_default.tally.dynamic_kept_pct();
-      all_beaten = all_beaten && !std::isnan(other) && kept < other;
-    }
-    const hbos::cases::EqualLoss* q = nullptr;
-    for (const auto& e : m.equal_loss)
-      if (e.screen == "quantile") q = &e;
-    md += q == nullptr || std::isnan(q->at_chi2.value)
-              ? std::string(" - |\n")
-              : fmt::format(" {} / {} ({:.3g}) |\n", cell(q->at_chi2.tally.static_dropped_pct()),
-                            cell(q->at_chi2.tally.dynamic_kept_pct()), q->at_chi2.value);
-    if (!std::isnan(kept)) {
-      ++with_person;
-      beyond_all += all_beaten ? 1 : 0;
-    }
+    const auto v = hbos::cases::acceptance_with_history(m, strategies);
+    passed += v.pass ? 1 : 0;
+    md += fmt::format("| {} | {} | {} |\n", m.name, v.pass ? "pass" : "FAIL", v.reason);
   }
-  md += fmt::format(
-      "\nIn {} of {} cases with dynamic matches the default keeps fewer than every baseline "
-      "at its static loss.\n",
-      beyond_all, with_person);
+  md += fmt::format("\n{} of {} cases pass.\n", passed, all.size());
   return md;
 }
 
@@ -193,6 +229,8 @@ nlohmann::ordered_json to_json(const std::vector<CaseMetrics>& all,
     }
     const auto v = hbos::cases::acceptance(m, strategies);
     c["acceptance"] = {{"pass", v.pass}, {"reason", v.reason}};
+    const auto vh = hbos::cases::acceptance_with_history(m, strategies);
+    c["acceptance_with_history"] = {{"pass", vh.pass}, {"reason", vh.reason}};
     for (const auto& e : m.equal_loss) {
       const auto at = [&](const hbos_test::AtStaticLoss& a) {
         return nlohmann::ordered_json{{"target_static_dropped_pct", number(a.target_pct)},
@@ -201,9 +239,16 @@ nlohmann::ordered_json to_json(const std::vector<CaseMetrics>& all,
                                       {"dynamic_kept_pct", number(a.tally.dynamic_kept_pct())},
                                       {"gross_kept_pct", number(a.tally.gross_kept_pct())}};
       };
-      c["equal_loss"][e.screen] = {
-          {"setting", e.setting}, {"at_default", at(e.at_default)}, {"at_chi2", at(e.at_chi2)}};
+      c["equal_loss"][e.screen] = {{"setting", e.setting},
+                                   {"at_default", at(e.at_default)},
+                                   {"at_chi2", at(e.at_chi2)},
+                                   {"at_default_with_history", at(e.at_default_with_history)}};
     }
+    const auto& h = m.default_with_history;
+    c["default_with_history"] = {
+        {"statics", h.statics},   {"static_dropped_pct", number(h.static_dropped_pct())},
+        {"dynamics", h.dynamics}, {"dynamic_kept_pct", number(h.dynamic_kept_pct())},
+        {"gross", h.gross},       {"gross_kept_pct", number(h.gross_kept_pct())}};
     c["pairs_with_person"] = m.pairs_with_person;
     c["pairs_absorbed"] = m.pairs_absorbed;
     c["static_whitened_quantiles"] = {

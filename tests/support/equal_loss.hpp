@@ -18,6 +18,7 @@
 #include <functional>
 #include <limits>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "screening_cases.hpp"
@@ -40,6 +41,21 @@ struct CaseTally {
   [[nodiscard]] double gross_kept_pct() const { return pct(gross_kept, gross); }
 };
 
+/// Adds match i of `pair`, kept or not, to `t`.
+inline void count_match(CaseTally& t, const CasePair& pair, Eigen::Index i, bool kept) {
+  const auto k = static_cast<std::size_t>(i);
+  if (pair.dynamic[k] != 0) {
+    ++t.dynamics;
+    t.dynamic_kept += kept ? 1 : 0;
+  } else if (pair.gross[k] != 0) {
+    ++t.gross;
+    t.gross_kept += kept ? 1 : 0;
+  } else {
+    ++t.statics;
+    t.static_dropped += kept ? 0 : 1;
+  }
+}
+
 /// Screens every pair of `c` once with `screen` and counts.
 [[nodiscard]] inline CaseTally tally_case(const ScreeningCase& c,
                                           hbos::ReprojectionScreend& screen) {
@@ -47,20 +63,49 @@ struct CaseTally {
   for (const CasePair& pair : c.pairs) {
     if (pair.size() == 0) continue;
     const hbos::ScreenResult<double>& r = screen.screen(pair.matches);
+    for (Eigen::Index i = 0; i < pair.size(); ++i) count_match(t, pair, i, r.inlier(i));
+  }
+  return t;
+}
+
+/// Screens the pairs of `c` in order as a tracker with memory would: each track (the pairs'
+/// track_id chains) keeps the forgetting-weighted share of its screenings that rejected it,
+/// share = sum_k f^k r_k / sum_k f^k (r_k = 1 when screened out k screenings ago), as the map
+/// tracker's ScreeningHistory does (examples/slam/frontend/map/screening_history.hpp), and each
+/// match whose track was screened before carries that share as its outlier history
+/// (Matches::set_outlier_history). The screen stays stateless; this loop is the caller.
+[[nodiscard]] inline CaseTally tally_case_with_history(const ScreeningCase& c,
+                                                       hbos::ReprojectionScreend& screen,
+                                                       double forgetting = 0.8) {
+  struct Memory {
+    double rejections = 0.0, screenings = 0.0;
+  };
+  std::unordered_map<int, Memory> memory, next;
+  hbos::Matchesd matches;
+  CaseTally t;
+  for (const CasePair& pair : c.pairs) {
+    if (pair.size() == 0) continue;
+    matches = pair.matches;
+    for (Eigen::Index i = 0; i < pair.size(); ++i) {
+      const auto it = memory.find(pair.track_id[static_cast<std::size_t>(i)]);
+      if (it != memory.end())
+        matches.set_outlier_history(i, it->second.rejections / it->second.screenings);
+    }
+    const hbos::ScreenResult<double>& r = screen.screen(matches);
+    next.clear();
     for (Eigen::Index i = 0; i < pair.size(); ++i) {
       const auto k = static_cast<std::size_t>(i);
       const bool kept = r.inlier(i);
-      if (pair.dynamic[k] != 0) {
-        ++t.dynamics;
-        t.dynamic_kept += kept ? 1 : 0;
-      } else if (pair.gross[k] != 0) {
-        ++t.gross;
-        t.gross_kept += kept ? 1 : 0;
-      } else {
-        ++t.statics;
-        t.static_dropped += kept ? 0 : 1;
+      if (pair.track_id[k] >= 0) {
+        const auto it = memory.find(pair.track_id[k]);
+        Memory m = it == memory.end() ? Memory{} : it->second;
+        m.rejections = forgetting * m.rejections + (kept ? 0.0 : 1.0);
+        m.screenings = forgetting * m.screenings + 1.0;
+        next[pair.track_id[k]] = m;
       }
+      count_match(t, pair, i, kept);
     }
+    memory.swap(next);
   }
   return t;
 }
