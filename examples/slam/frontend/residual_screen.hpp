@@ -47,7 +47,6 @@ struct ScreenOutcome {
 struct MatchEvidence {
   std::vector<double> depth_m;           ///< [m] depth of the observed keypoint; <= 0: unknown
   std::vector<double> mask_distance_px;  ///< [px] to the nearest masked pixel; inf: no mask
-  std::vector<std::uint8_t> in_box;      ///< 1 = inside a detector box but outside its mask
   /// The persistence prior the caller keeps per track or map point: in [0, 1], the
   /// forgetting-weighted share of past frames in which this point was screened out.
   std::vector<double> outlier_history;
