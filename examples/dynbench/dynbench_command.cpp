@@ -87,6 +87,9 @@ void add_options(CLI::App& app, CommandOptions& o) {
   app.add_option("--jobs", s.jobs, "cells run at once (1 for the cleanest timings)")
       ->capture_default_str()
       ->check(CLI::Range(1, 64));
+  app.add_flag("--mask-evidence,!--no-mask-evidence", s.base.screen.mask_evidence,
+               "pass each match's distance to the dynamic-object mask to the screen")
+      ->capture_default_str();
   app.add_option("--rounds", s.base.screen.rounds, "screen -> refine -> re-screen rounds")
       ->capture_default_str()
       ->check(CLI::Range(1, 20));

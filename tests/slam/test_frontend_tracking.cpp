@@ -97,6 +97,36 @@ TEST_CASE("person without mask: the default screen removes most of its matches",
   CHECK(*unscreened.run.totals.person_survival_share == 1.0);
 }
 
+TEST_CASE("degraded mask: the mask's neighbourhood, passed to the screen, rejects more leaks",
+          "[frontend][tracking][screen][mask]") {
+  // The degraded mask leaks the person's edges and legs. With each match's distance to the mask
+  // passed (ScreenStageConfig::mask_evidence), the default screen's mask evidence rejects
+  // leaked matches inside the noise gate; without it the same matches are judged on their
+  // residual alone. Baselines ignore the distances.
+  hbos::slam::Config config;
+  config.scenario.add_person = true;
+  config.mask.source = hbos::slam::MaskSource::kDegraded;
+  const int frames = 37;
+  const Outcome off = track_embedded(config, frames);
+  config.screen.mask_evidence = true;
+  const Outcome on = track_embedded(config, frames);
+  const auto& a = off.run.totals;
+  const auto& b = on.run.totals;
+  REQUIRE(a.person_matches > 100);
+  REQUIRE(b.person_survival_share.has_value());
+  REQUIRE(a.person_survival_share.has_value());
+  CHECK(*b.person_survival_share < *a.person_survival_share - 0.005);
+  CHECK(b.static_loss_share < a.static_loss_share + 0.01);
+
+  config.screen.select("chi2");
+  config.screen.mask_evidence = false;
+  const Outcome chi2_off = track_embedded(config, frames);
+  config.screen.mask_evidence = true;
+  const Outcome chi2_on = track_embedded(config, frames);
+  CHECK(chi2_on.run.totals.person_survivors == chi2_off.run.totals.person_survivors);
+  CHECK(chi2_on.run.totals.static_dropped == chi2_off.run.totals.static_dropped);
+}
+
 TEST_CASE("hbos-slam writes its outputs on a short run", "[frontend][command]") {
   ScratchDir dir("run");
   const std::string out_dir = dir.file("out");

@@ -107,6 +107,9 @@ struct ScreenStageConfig {
   std::string name = "default";   ///< the name it was selected by, for tables and logs
   int rounds = 4;                 ///< screen -> refine -> re-screen rounds (ORB-SLAM2 runs 4)
   Eigen::Index min_inliers = 10;  ///< stop re-fitting below this many survivors
+  /// pass each match's distance to the frame's dynamic-object mask to the screen (the mask's
+  /// neighbourhood evidence of hbos's default; the baselines ignore it); only with a mask
+  bool mask_evidence = false;
 
   /// Selects a strategy of hbos::named_strategies() by name, or "none".
   /// \throws hbos::InvalidArgument naming the value and the choices.

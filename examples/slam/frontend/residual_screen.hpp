@@ -45,7 +45,6 @@ struct ScreenOutcome {
 /// Evidence about each match beyond its residual (index i = match i). Every field is optional:
 /// an empty vector means "not available" and the screen does without it.
 struct MatchEvidence {
-  std::vector<double> depth_m;           ///< [m] depth of the observed keypoint; <= 0: unknown
   std::vector<double> mask_distance_px;  ///< [px] to the nearest masked pixel; inf: no mask
   /// The persistence prior the caller keeps per track or map point: in [0, 1], the
   /// forgetting-weighted share of past frames in which this point was screened out.

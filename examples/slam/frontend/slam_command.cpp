@@ -97,6 +97,10 @@ void add_options(CLI::App& app, CommandOptions& o) {
          "--screen", [&c](const std::string& name) { c.screen.select(name); },
          "residual screen (default: " + c.screen.name + ")")
       ->check(CLI::IsMember(screen_strategy_names()));
+  app.add_flag("--mask-evidence,!--no-mask-evidence", c.screen.mask_evidence,
+               "pass each match's distance to the dynamic-object mask to the screen (the "
+               "default screen's mask-neighbourhood evidence)")
+      ->capture_default_str();
   app.add_option("--rounds", c.screen.rounds, "screen -> refine -> re-screen rounds")
       ->capture_default_str()
       ->check(CLI::Range(1, 20));

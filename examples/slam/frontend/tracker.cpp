@@ -1,5 +1,7 @@
 #include "frontend/tracker.hpp"
 
+#include "frontend/mask_distance.hpp"
+
 #include <hbos/screening/residual_field.hpp>
 
 #include <chrono>
@@ -15,7 +17,8 @@ Tracker::Tracker(const Config& config, const CameraModel& camera)
       screen_(config.screen),
       refiner_(config.refinement, camera.pinhole()),
       scale_factor_(config.extraction.scale_factor),
-      min_matches_(static_cast<int>(config.screen.min_inliers)) {}
+      min_matches_(static_cast<int>(config.screen.min_inliers)),
+      pass_mask_distance_(passes_mask_distance(config)) {}
 
 TrackResult Tracker::track(const Frame& frame) {
   TrackResult out;
@@ -40,6 +43,8 @@ TrackResult Tracker::track(const Frame& frame) {
 
   // 3. Each match: the previous keypoint back-projected to 3D, the current keypoint observing it.
   const hbos::PinholeCamerad camera = refiner_.camera();
+  const MaskDistance to_mask(pass_mask_distance_ ? frame.mask : cv::Mat());
+  MatchEvidence evidence;
   std::vector<Eigen::Vector3d> points_prev;
   std::vector<Eigen::Vector2d> observed;
   std::vector<double> sigma;
@@ -49,6 +54,8 @@ TrackResult Tracker::track(const Frame& frame) {
     observed.push_back(current.undistorted[c]);
     // ORB-SLAM's noise model: a keypoint at octave o is 1.2^o times less precise.
     sigma.push_back(hbos::sigma_from_octave(current.keypoints[c].octave, scale_factor_));
+    if (pass_mask_distance_)
+      evidence.mask_distance_px.push_back(to_mask.at(current.keypoints[c].pt));
     out.matches.push_back({{current.keypoints[c].pt.x, current.keypoints[c].pt.y},
                            {previous.keypoints[p].pt.x, previous.keypoints[p].pt.y},
                            previous.on_person[p] != 0 || current.on_person[c] != 0,
@@ -72,7 +79,7 @@ TrackResult Tracker::track(const Frame& frame) {
 
     // 5. Screen the reprojection residuals under the rough pose; between rounds the pose is
     //    refined on the survivors and the residuals measured again.
-    out.screen = screen_.screen(points_prev, observed, sigma, T_candidate, refiner_);
+    out.screen = screen_.screen(points_prev, observed, sigma, T_candidate, refiner_, evidence);
 
     // 6. Refine the pose on the final survivors.
     Eigen::Index survivors = 0;

@@ -81,6 +81,7 @@ class Tracker {
   PoseRefiner refiner_;
   float scale_factor_;
   int min_matches_;
+  bool pass_mask_distance_;  ///< the screen sees each match's distance to the frame's mask
 
   std::optional<Features> previous_;
   Eigen::Isometry3d T_world_previous_ = Eigen::Isometry3d::Identity();

@@ -1,5 +1,7 @@
 #include "frontend/map/map_tracker.hpp"
 
+#include "frontend/mask_distance.hpp"
+
 #include <hbos/screening/residual_field.hpp>
 #include "common/index.hpp"
 
@@ -137,7 +139,7 @@ TrackResult MapTracker::track(const Frame& frame) {
 
   // 6. Reproject every match under the rough pose and screen the residuals (the rounds refine
   //    the pose on the survivors), with each point's screening history as evidence.
-  const Matched m = gather(current, point_of, out);
+  const Matched m = gather(frame, current, point_of, out);
   out.screen =
       screen_.screen(m.points_world, m.observed, m.sigma, T_camera_world, refiner_, m.evidence);
   // 7. Optimise the pose on the survivors (Huber).
@@ -265,9 +267,11 @@ void MapTracker::match_local_map(const Frame& frame, const Features& current,
                                config_.map.local_map.viewing_cos_limit, point_of);
 }
 
-MapTracker::Matched MapTracker::gather(const Features& current, const std::vector<int>& point_of,
-                                       TrackResult& out) const {
+MapTracker::Matched MapTracker::gather(const Frame& frame, const Features& current,
+                                       const std::vector<int>& point_of, TrackResult& out) const {
   Matched m;
+  const bool mask_distances = passes_mask_distance(config_);
+  const MaskDistance to_mask(mask_distances ? frame.mask : cv::Mat());
   for (std::size_t k = 0; k < point_of.size(); ++k) {
     const int id = point_of[k];
     if (id < 0) continue;
@@ -279,7 +283,7 @@ MapTracker::Matched MapTracker::gather(const Features& current, const std::vecto
     // ORB-SLAM's noise model: a keypoint at octave o is 1.2^o times less precise.
     m.sigma.push_back(
         hbos::sigma_from_octave(current.keypoints[k].octave, config_.extraction.scale_factor));
-    m.evidence.depth_m.push_back(static_cast<double>(current.depth_m[k]));
+    if (mask_distances) m.evidence.mask_distance_px.push_back(to_mask.at(current.keypoints[k].pt));
     m.evidence.outlier_history.push_back(p.history.outlier_share());
     const cv::Point2f& now = current.keypoints[k].pt;
     const auto before = last_pixel_of_point_.find(id);

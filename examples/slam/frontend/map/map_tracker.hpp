@@ -83,7 +83,8 @@ class MapTracker {
                                const Eigen::Isometry3d& guess, FrameStats& stats) const;
   void match_local_map(const Frame& frame, const Features& current, const KeypointGrid& grid,
                        const Eigen::Isometry3d& T_camera_world, std::vector<int>& point_of);
-  Matched gather(const Features& current, const std::vector<int>& point_of, TrackResult& out) const;
+  Matched gather(const Frame& frame, const Features& current, const std::vector<int>& point_of,
+                 TrackResult& out) const;
   void refine_on_survivors(const Matched& m, ScreenOutcome& screen, Eigen::Isometry3d& T) const;
   void update_history(const Matched& m, const ScreenOutcome& screen, std::vector<int>& point_of);
   void finish(const Frame& frame, Features current, const std::vector<int>& point_of,
