@@ -250,6 +250,25 @@ class Histogram {
   }
   /// Scores the bins once all `n` values have been counted.
   void end_staged_fit(Index n, const ScoringOptions& options) { score_bins(n, options); }
+  /// During a staged fit: whether count_more computes this histogram's bins with the one-byte
+  /// kernel (detail/byte_bins.hpp: few equal-width bins, unscaled), and then its constants in
+  /// `constants`. A caller may compute a part's bins itself with them, as that kernel does (two
+  /// features of a row-major block at once), and count them with count_byte_bins: the counts
+  /// are count_more's.
+  [[nodiscard]] bool byte_bin_constants(detail::ByteBinConstants<Scalar>& constants) const {
+    if (!counts_by_bytes()) return false;
+    constants.lo = layout_.lo;
+    constants.inv = layout_.inv_width;
+    constants.last = static_cast<Scalar>(layout_.edges.size() - 2);
+    return true;
+  }
+  /// Counts the one-byte bins `b[0, m)` (each below bins()) of the next part of a staged fit.
+  void count_byte_bins(const std::uint8_t* b, std::size_t m) {
+    std::array<std::uint64_t, detail::kCompareCountMaxBins> few{};
+    const std::size_t k = counts_.size();
+    detail::count_byte_indices(b, m, k, few.data());
+    for (std::size_t j = 0; j < k; ++j) counts_[j] += static_cast<Index>(few[j]);
+  }
 
  private:
   template <class BinIndex>
@@ -295,6 +314,12 @@ class Histogram {
   /// Adds the counts of `x` to counts_ (sized to the bins), recording each value's bin.
   template <class BinIndex = std::uint32_t>
   void accumulate_counts(const detail::ColumnView<Scalar>& x, BinIndex* bin_index);
+  /// Whether accumulate_counts takes the one-byte kernel: few uniform bins of a non-periodic,
+  /// unscaled feature with a positive width.
+  [[nodiscard]] bool counts_by_bytes() const {
+    return !periodic_ && uniform_ && layout_.inv_width > Scalar(0) && layout_.scale == Scalar(1) &&
+           layout_.edges.size() - 1 <= detail::kCompareCountMaxBins;
+  }
   void smooth_counts();
   void score_bins(Index n, const ScoringOptions& options);
 
@@ -403,7 +428,7 @@ void Histogram<Scalar>::accumulate_counts(const detail::ColumnView<Scalar>& x,
     return static_cast<std::int32_t>(u < last_bin ? u : last_bin);
   };
   constexpr Index block = 256;
-  if (k <= detail::kCompareCountMaxBins) {
+  if (counts_by_bytes()) {
     // Few bins: the indices go to bytes (the caller's, when it records one-byte indices) and are
     // counted by comparison (detail/byte_bins.hpp).
     std::array<std::uint64_t, detail::kCompareCountMaxBins> few{};

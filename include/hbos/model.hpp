@@ -20,6 +20,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -145,9 +146,11 @@ inline bool at_most_256_bins(const HbosParams& params, Eigen::Index n_features) 
 /// Reusable buffers of fit_and_score_columns (a Workspace keeps them, so frames do not allocate).
 template <class Scalar, class BinIndex>
 struct FitScoreBuffers {
-  std::vector<Scalar> scratch;          // copies for sorting, wrapping, selecting
-  std::vector<Scalar> storage;          // columns of expressions without direct access
-  std::vector<BinIndex> bin_index;      // n x d, column-major: the bin each value was counted in
+  std::vector<Scalar> scratch;  // copies for sorting, wrapping, selecting
+  std::vector<Scalar> storage;  // columns of expressions without direct access
+  // n x d, column-major: the bin each value was counted in. Not zeroed on growth: an entry is
+  // read only where its feature's fit wrote all of its column.
+  std::vector<BinIndex, UninitializedAllocator<BinIndex>> bin_index;
   std::vector<unsigned char> recorded;  // per feature: whether its bin indices were recorded
   std::vector<Scalar> pair_table;       // contributions of features 0 and 1 summed, per bin pair
   std::vector<Scalar> range;            // 2 d: every feature's min, then every feature's max
@@ -188,6 +191,35 @@ bool fit_rows_at_once(std::vector<Histogram<Scalar>>& histograms,
               ? 1
               : 0;
     }
+    const auto un = static_cast<std::size_t>(n);
+    detail::ByteBinConstants<Scalar> c0, c1;
+    if (d == 2 && m.rowStride() == 2 && histograms[0].byte_bin_constants(c0) &&
+        histograms[1].byte_bin_constants(c1)) {
+      // Two features of contiguous rows, few bins each (the classic static job on numpy's
+      // default layout): both features' bins come straight from the rows, with no gather of a
+      // strided column, and are counted while they are in L1. A chunk is one round of
+      // count_byte_indices (255 vectors of 16).
+      constexpr std::size_t chunk = std::size_t{255} * 16;
+      std::array<std::array<std::uint8_t, chunk>, 2> local{};  // bins not recorded as bytes
+      for (std::size_t start = 0; start < un; start += chunk) {
+        const std::size_t rows = std::min(chunk, un - start);
+        std::array<std::uint8_t*, 2> b{local[0].data(), local[1].data()};
+        if constexpr (std::is_same_v<BinIndex, std::uint8_t>) {
+          for (std::size_t j = 0; j < 2; ++j)
+            if (buffers.recorded[j] != 0) b[j] = buffers.bin_index.data() + j * un + start;
+        }
+        detail::interleaved_byte_bins_2(data + 2 * start, rows, c0, c1, b[0], b[1]);
+        for (std::size_t j = 0; j < 2; ++j) {
+          histograms[j].count_byte_bins(b[j], rows);
+          if constexpr (!std::is_same_v<BinIndex, std::uint8_t>) {
+            if (buffers.recorded[j] != 0)
+              std::copy(b[j], b[j] + rows, buffers.bin_index.data() + j * un + start);
+          }
+        }
+      }
+      for (auto& h : histograms) h.end_staged_fit(n, params.scoring);
+      return true;
+    }
     // A block of rows small enough to stay in L2 while each feature takes its column of it;
     // the whole column at once when a feature has so many bins that clearing its interleaved
     // counters per block would cost more than the block.
@@ -195,7 +227,6 @@ bool fit_rows_at_once(std::vector<Histogram<Scalar>>& histograms,
     for (const auto& h : histograms) most_bins = std::max(most_bins, h.bins());
     const Eigen::Index block =
         most_bins > 4096 ? n : std::max<Eigen::Index>(256, (Eigen::Index{1} << 16) / d);
-    const auto un = static_cast<std::size_t>(n);
     for (Eigen::Index start = 0; start < n; start += block) {
       const Eigen::Index rows = std::min(block, n - start);
       for (std::size_t j = 0; j < ud; ++j) {

@@ -5,10 +5,12 @@
 #include <catch2/catch.hpp>
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
 #include <random>
+#include <utility>
 #include <vector>
 
 #include "hbos/detail/byte_bins.hpp"
@@ -67,6 +69,64 @@ TEST_CASE("uniform_byte_bins gives the bin of the scalar rule for every value", 
     for (const std::size_t m : {0UL, 1UL, 15UL, 16UL, 17UL, 33UL, 256UL, 1000UL}) {
       check_bins<double>(k, m, rng);
       check_bins<float>(k, m, rng);
+    }
+  }
+}
+
+TEST_CASE("interleaved_byte_bins_2 gives each feature's uniform_byte_bins", "[byte_bins]") {
+  // Two features stored row by row, each with its own range and bin count: every byte must be
+  // the bin uniform_byte_bins gives the feature's own contiguous column (and the scalar rule),
+  // on row counts that exercise the 16-row vectors and the scalar tail.
+  std::mt19937_64 rng(13);
+  auto run = [&](auto zero, std::size_t k0, std::size_t k1, std::size_t m) {
+    using Scalar = decltype(zero);
+    const Scalar lo0 = Scalar(-1.5), hi0 = Scalar(2.25), lo1 = Scalar(1e3), hi1 = Scalar(1e3 + 7);
+    const Scalar w0 = (hi0 - lo0) / static_cast<Scalar>(k0),
+                 w1 = (hi1 - lo1) / static_cast<Scalar>(k1);
+    const hbos::detail::ByteBinConstants<Scalar> c0{lo0, Scalar(1) / w0,
+                                                    static_cast<Scalar>(k0 - 1)};
+    const hbos::detail::ByteBinConstants<Scalar> c1{lo1, Scalar(1) / w1,
+                                                    static_cast<Scalar>(k1 - 1)};
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    std::vector<Scalar> rows(2 * m), col0(m), col1(m);
+    for (std::size_t r = 0; r < m; ++r) {
+      // On an edge, one ulp either side of it, or anywhere in the range, hi included.
+      auto value = [&](Scalar lo, Scalar hi, Scalar w, std::size_t k, std::size_t salt) {
+        const std::size_t e = (r + salt) % (k + 1);
+        const Scalar edge = e == k ? hi : lo + static_cast<Scalar>(e) * w;
+        switch ((r + salt) % 7) {
+          case 0:
+            return edge;
+          case 1:
+            return std::max(lo, std::nextafter(edge, lo));
+          case 2:
+            return std::min(hi, std::nextafter(edge, hi));
+          default:
+            return std::min(hi, lo + static_cast<Scalar>(u(rng)) * (hi - lo));
+        }
+      };
+      col0[r] = rows[2 * r] = value(lo0, hi0, w0, k0, 0);
+      col1[r] = rows[2 * r + 1] = value(lo1, hi1, w1, k1, 3);
+    }
+    std::vector<std::uint8_t> b0(m + 1, 0xEE), b1(m + 1, 0xEE), e0(m), e1(m);
+    hbos::detail::interleaved_byte_bins_2(rows.data(), m, c0, c1, b0.data(), b1.data());
+    hbos::detail::uniform_byte_bins(col0.data(), m, c0.lo, c0.inv, c0.last, e0.data());
+    hbos::detail::uniform_byte_bins(col1.data(), m, c1.lo, c1.inv, c1.last, e1.data());
+    for (std::size_t r = 0; r < m; ++r) {
+      INFO("k " << k0 << ", " << k1 << ", m " << m << ", row " << r);
+      REQUIRE(b0[r] == e0[r]);
+      REQUIRE(b1[r] == e1[r]);
+      REQUIRE(b0[r] == plain_bin(col0[r], c0.lo, c0.inv, c0.last));
+      REQUIRE(b1[r] == plain_bin(col1[r], c1.lo, c1.inv, c1.last));
+    }
+    REQUIRE(b0[m] == 0xEE);  // nothing written past the rows
+    REQUIRE(b1[m] == 0xEE);
+  };
+  for (const auto& [k0, k1] : std::vector<std::pair<std::size_t, std::size_t>>{
+           {10, 10}, {1, 16}, {16, 3}, {7, 255}, {2, 1}}) {
+    for (const std::size_t m : {0UL, 1UL, 15UL, 16UL, 17UL, 31UL, 32UL, 33UL, 1000UL, 4081UL}) {
+      run(0.0, k0, k1, m);
+      run(0.0F, k0, k1, m);
     }
   }
 }

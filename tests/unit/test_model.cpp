@@ -9,6 +9,7 @@
 #include <cmath>
 #include <limits>
 #include <random>
+#include <string>
 #include <thread>
 #include <vector>
 
@@ -290,6 +291,173 @@ TEMPLATE_TEST_CASE("row-major data is fitted by rows, bit for bit the column-maj
     Vector out(500);
     CHECK_THROWS_WITH(hbos::Hbos<Scalar>::fit_and_score(rows, out),
                       Catch::Contains("X(417, 1) is not finite"));
+  }
+}
+
+namespace {
+
+/// n x d values whose column j is of kind (j + offset) % 6: normal; a grid of the integers 0..10
+/// and their neighbours one ulp away (on and beside the edges of 1, 2, 5 and 10 bins over
+/// [0, 10]); a constant; ties of three values; values near the largest finite one (their range
+/// overflows: binned scaled); subnormals (binned scaled too).
+template <class Scalar>
+Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic> awkward_data(std::uint32_t seed,
+                                                                   Eigen::Index n, Eigen::Index d,
+                                                                   Eigen::Index offset) {
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> normal;
+  std::uniform_int_distribution<int> pick(0, 10), side(-1, 1);
+  std::uniform_real_distribution<double> unit(-0.9, 0.9);
+  const Scalar big = std::numeric_limits<Scalar>::max();
+  const Scalar tiny = std::numeric_limits<Scalar>::denorm_min();
+  Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic> x(n, d);
+  for (Eigen::Index j = 0; j < d; ++j) {
+    for (Eigen::Index i = 0; i < n; ++i) {
+      Scalar v = 0;
+      switch ((j + offset) % 6) {
+        case 0:
+          v = static_cast<Scalar>(normal(rng));
+          break;
+        case 1: {
+          // 0 and 10 first, so that the range is [0, 10] whenever n >= 2.
+          const int at = i < 2 ? static_cast<int>(10 * i) : pick(rng);
+          v = static_cast<Scalar>(at);
+          const int s = i < 2 ? 0 : side(rng);
+          if (s != 0 && at + s >= 0 && at + s <= 10)
+            v = std::nextafter(v, static_cast<Scalar>(at + s));
+          break;
+        }
+        case 2:
+          v = Scalar(3.25);
+          break;
+        case 3:
+          v = static_cast<Scalar>(pick(rng) % 3) * Scalar(0.5);
+          break;
+        case 4:
+          v = static_cast<Scalar>(unit(rng)) * big;
+          break;
+        default:
+          v = static_cast<Scalar>(pick(rng)) * tiny;
+      }
+      x(i, j) = v;
+    }
+  }
+  return x;
+}
+
+}  // namespace
+
+TEMPLATE_TEST_CASE("C-order data gives the column-major fit and scores on awkward shapes",
+                   "[model][fit_and_score][row_major]", float, double) {
+  // numpy's C order reaches the library as a column-major map with an inner stride of d (the
+  // Python module's Map) or as a row-major matrix; two features with few bins each take the
+  // interleaved kernel (detail::interleaved_byte_bins_2), everything else the per-block or
+  // per-feature paths. Every one must give the column-major fit's histograms and scores bit for
+  // bit: feature counts 1, 2, 3, 5; row counts around the 16-row vectors and the 4080-row
+  // chunks; values on the bin edges; constant, scaled and mixed columns; 1 to 300 bins.
+  using Scalar = TestType;
+  using Model = hbos::Hbos<Scalar>;
+  using ColMajor = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
+  using RowMajor = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+  using Strided = Eigen::Map<const ColMajor, 0, Eigen::Stride<Eigen::Dynamic, Eigen::Dynamic>>;
+  using Vector = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
+  auto fixed = [](Eigen::Index bins, Eigen::Index shifts) {
+    hbos::HbosParams p;
+    p.feature.binning.bins = bins;
+    p.feature.binning.shifts = shifts;
+    return p;
+  };
+  std::vector<hbos::HbosParams> modes = {fixed(10, 1), fixed(1, 1),  fixed(2, 1),  fixed(5, 3),
+                                         fixed(16, 1), fixed(17, 1), fixed(300, 1)};
+  modes.emplace_back();  // the default: 5 bins x 5 shifts, 25 fine bins
+  hbos::HbosParams width;
+  width.feature.binning.method = hbos::BinningMethod::FixedWidth;
+  width.feature.binning.width = 1.0;
+  width.feature.binning.shifts = 1;
+  modes.push_back(width);
+
+  auto check = [&](const ColMajor& x, const hbos::HbosParams& params) {
+    const Eigen::Index n = x.rows(), d = x.cols();
+    const RowMajor rows = x;
+    const Strided strided(rows.data(), n, d, Eigen::Stride<Eigen::Dynamic, Eigen::Dynamic>(1, d));
+    Vector reference(n), by_rows(n), by_map(n);
+    // A spec the data cannot take (fixed width 1 over a range of 1e38) fails the same way.
+    std::string refused;
+    try {
+      (void)Model::fit_and_score(x, reference, params);
+    } catch (const hbos::InvalidArgument& e) {
+      refused = e.what();
+    }
+    if (!refused.empty()) {
+      CHECK_THROWS_WITH(Model::fit_and_score(rows, by_rows, params), refused);
+      CHECK_THROWS_WITH(Model::fit_and_score(strided, by_map, params), refused);
+      return;
+    }
+    const Model model = Model::fit_and_score(x, reference, params);
+    const Model row_model = Model::fit_and_score(rows, by_rows, params);
+    const Model map_model = Model::fit_and_score(strided, by_map, params);
+    REQUIRE(reference == Model::fit(x, params).score(x));
+    REQUIRE(by_rows == reference);
+    REQUIRE(by_map == reference);
+    REQUIRE(map_model.score(strided) == reference);
+    for (Eigen::Index j = 0; j < d; ++j) {
+      INFO("feature " << j);
+      for (const Model* other : {&row_model, &map_model}) {
+        REQUIRE(other->histogram(j).counts() == model.histogram(j).counts());
+        REQUIRE(other->histogram(j).edges() == model.histogram(j).edges());
+        REQUIRE(other->histogram(j).bin_contributions() == model.histogram(j).bin_contributions());
+        REQUIRE(other->histogram(j).cap() == model.histogram(j).cap());
+      }
+    }
+  };
+
+  SECTION("every kind of column next to every other") {
+    for (const Eigen::Index d : {1, 2, 3, 5}) {
+      for (const Eigen::Index n : {1, 2, 15, 16, 17, 4080, 4081, 8161}) {
+        for (Eigen::Index offset = 0; offset < 6; ++offset) {
+          const ColMajor x =
+              awkward_data<Scalar>(static_cast<std::uint32_t>(n * 7 + d), n, d, offset);
+          for (std::size_t m = 0; m < modes.size(); ++m) {
+            INFO("d " << d << ", n " << n << ", kinds from " << offset << ", mode " << m);
+            check(x, modes[m]);
+          }
+          // Each feature its own bin count (16, 3, 6, 9, 12): the kernel's constants per lane.
+          hbos::HbosParams mixed;
+          for (Eigen::Index j = 0; j < d; ++j)
+            mixed.features.push_back(fixed(16 - 13 * j % 16, 1).feature);
+          INFO("d " << d << ", n " << n << ", kinds from " << offset << ", bins per feature");
+          check(x, mixed);
+        }
+      }
+    }
+  }
+  SECTION("a million rows and three, not a multiple of any block") {
+    for (const Eigen::Index d : {1, 2, 3}) {
+      const ColMajor x = awkward_data<Scalar>(5, 1000003, d, 0);
+      for (const Eigen::Index bins : {10, 16}) {
+        INFO("d " << d << ", bins " << bins);
+        check(x, fixed(bins, 1));
+      }
+    }
+  }
+  SECTION("a non-finite value is named as in the column-major fit, wherever it is") {
+    for (const Eigen::Index d : {1, 2, 3}) {
+      for (const Eigen::Index at : {0, 15, 4095, 8000}) {
+        for (const Scalar bad :
+             {std::numeric_limits<Scalar>::quiet_NaN(), -std::numeric_limits<Scalar>::infinity()}) {
+          RowMajor rows = awkward_data<Scalar>(9, 8161, d, 0);
+          rows(at, d - 1) = bad;
+          const Strided strided(rows.data(), rows.rows(), d,
+                                Eigen::Stride<Eigen::Dynamic, Eigen::Dynamic>(1, d));
+          Vector out(rows.rows());
+          const std::string where =
+              "X(" + std::to_string(at) + ", " + std::to_string(d - 1) + ") is not finite";
+          CHECK_THROWS_WITH(Model::fit_and_score(rows, out, fixed(10, 1)), Catch::Contains(where));
+          CHECK_THROWS_WITH(Model::fit_and_score(strided, out, fixed(10, 1)),
+                            Catch::Contains(where));
+        }
+      }
+    }
   }
 }
 

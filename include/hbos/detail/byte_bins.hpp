@@ -64,6 +64,81 @@ void uniform_byte_bins(const Scalar* x, std::size_t m, Scalar lo, Scalar inv, Sc
   }
 }
 
+/// The constants of one feature's one-byte bins: b = trunc(min((v - lo) * inv, last)).
+template <class Scalar>
+struct ByteBinConstants {
+  Scalar lo = 0, inv = 0, last = 0;
+};
+
+/// The bins of uniform_byte_bins for two features stored row by row, as a row-major matrix with
+/// two columns (numpy's C order) stores them: for r < m, x[2 r] is feature 0's value and
+/// x[2 r + 1] feature 1's; b0[r] and b1[r] get their bins. Each value takes the same arithmetic
+/// as in uniform_byte_bins, so the bytes are the same; the two features are parted only as int32
+/// bins, in registers, instead of gathering each strided column into a buffer first.
+template <class Scalar>
+void interleaved_byte_bins_2(const Scalar* x, std::size_t m, const ByteBinConstants<Scalar>& c0,
+                             const ByteBinConstants<Scalar>& c1, std::uint8_t* b0,
+                             std::uint8_t* b1) {
+  std::size_t r = 0;
+#ifdef HBOS_DETAIL_BYTE_BINS_SSE2
+  if constexpr (std::is_same_v<Scalar, double>) {
+    // One row per vector: lane 0 is feature 0, lane 1 feature 1.
+    const __m128d vlo = _mm_set_pd(c1.lo, c0.lo), vinv = _mm_set_pd(c1.inv, c0.inv),
+                  vlast = _mm_set_pd(c1.last, c0.last);
+    auto row = [&](const double* p) {  // {bin 0, bin 1, 0, 0} as int32
+      return _mm_cvttpd_epi32(
+          _mm_min_pd(_mm_mul_pd(_mm_sub_pd(_mm_loadu_pd(p), vlo), vinv), vlast));
+    };
+    // Four rows from p: feature 0's four bins in `first`, feature 1's in `second`.
+    auto four = [&](const double* p, __m128i& first, __m128i& second) {
+      const __m128i r01 = _mm_unpacklo_epi32(row(p), row(p + 2));      // a0 a1 b0 b1
+      const __m128i r23 = _mm_unpacklo_epi32(row(p + 4), row(p + 6));  // a2 a3 b2 b3
+      first = _mm_unpacklo_epi64(r01, r23);
+      second = _mm_unpackhi_epi64(r01, r23);
+    };
+    for (; m - r >= 16; r += 16) {
+      const double* p = x + 2 * r;
+      __m128i a0, a1, a2, a3, s0, s1, s2, s3;
+      four(p, a0, s0);
+      four(p + 8, a1, s1);
+      four(p + 16, a2, s2);
+      four(p + 24, a3, s3);
+      store_16_bins(a0, a1, a2, a3, b0 + r);
+      store_16_bins(s0, s1, s2, s3, b1 + r);
+    }
+  } else if constexpr (std::is_same_v<Scalar, float>) {
+    // Two rows per vector: lanes 0 and 2 are feature 0, lanes 1 and 3 feature 1.
+    const __m128 vlo = _mm_set_ps(c1.lo, c0.lo, c1.lo, c0.lo),
+                 vinv = _mm_set_ps(c1.inv, c0.inv, c1.inv, c0.inv),
+                 vlast = _mm_set_ps(c1.last, c0.last, c1.last, c0.last);
+    auto rows = [&](const float* p) {  // {a, b, a', b'} bins as int32, viewed as floats to shuffle
+      return _mm_castsi128_ps(
+          _mm_cvttps_epi32(_mm_min_ps(_mm_mul_ps(_mm_sub_ps(_mm_loadu_ps(p), vlo), vinv), vlast)));
+    };
+    auto four = [&](const float* p, __m128i& first, __m128i& second) {
+      const __m128 r01 = rows(p), r23 = rows(p + 4);
+      first = _mm_castps_si128(_mm_shuffle_ps(r01, r23, _MM_SHUFFLE(2, 0, 2, 0)));
+      second = _mm_castps_si128(_mm_shuffle_ps(r01, r23, _MM_SHUFFLE(3, 1, 3, 1)));
+    };
+    for (; m - r >= 16; r += 16) {
+      const float* p = x + 2 * r;
+      __m128i a0, a1, a2, a3, s0, s1, s2, s3;
+      four(p, a0, s0);
+      four(p + 8, a1, s1);
+      four(p + 16, a2, s2);
+      four(p + 24, a3, s3);
+      store_16_bins(a0, a1, a2, a3, b0 + r);
+      store_16_bins(s0, s1, s2, s3, b1 + r);
+    }
+  }
+#endif
+  for (; r < m; ++r) {
+    const Scalar u0 = (x[2 * r] - c0.lo) * c0.inv, u1 = (x[2 * r + 1] - c1.lo) * c1.inv;
+    b0[r] = static_cast<std::uint8_t>(static_cast<std::int32_t>(u0 < c0.last ? u0 : c0.last));
+    b1[r] = static_cast<std::uint8_t>(static_cast<std::int32_t>(u1 < c1.last ? u1 : c1.last));
+  }
+}
+
 /// Most bins the compare-and-count path takes: it costs k compares per 16 values, which beyond
 /// about 16 bins is more than the scalar increments it replaces (docs/benchmarks.md).
 inline constexpr std::size_t kCompareCountMaxBins = 16;
@@ -80,17 +155,30 @@ inline void count_byte_indices(const std::uint8_t* index, std::size_t m, std::si
   while (m - i >= 16) {
     const std::size_t vectors = std::min((m - i) / 16, max_vectors);
     const std::uint8_t* p = index + i;
-    for (std::size_t b = 0; b < k; ++b) {
+    auto matches = [&](std::size_t v, __m128i bin) {  // -1 in each lane equal to bin
+      return _mm_cmpeq_epi8(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p + 16 * v)), bin);
+    };
+    // Every bin but the last is counted; the last gets what the others leave of the round.
+    std::uint64_t counted = 0;
+    for (std::size_t b = 0; b + 1 < k; ++b) {
       const __m128i bin = _mm_set1_epi8(static_cast<char>(b));
-      __m128i lanes = zero;
-      for (std::size_t v = 0; v < vectors; ++v) {
-        const __m128i x = _mm_loadu_si128(reinterpret_cast<const __m128i*>(p + 16 * v));
-        lanes = _mm_sub_epi8(lanes, _mm_cmpeq_epi8(x, bin));  // a match compares as -1
+      // Two sets of lanes, so that each vector's subtraction does not wait on the previous one.
+      __m128i lanes0 = zero, lanes1 = zero;
+      std::size_t v = 0;
+      for (; v + 2 <= vectors; v += 2) {
+        lanes0 = _mm_sub_epi8(lanes0, matches(v, bin));
+        lanes1 = _mm_sub_epi8(lanes1, matches(v + 1, bin));
       }
-      const __m128i sums = _mm_sad_epu8(lanes, zero);  // one sum per 8 lanes, in 64-bit halves
-      counts[b] += static_cast<std::uint64_t>(_mm_cvtsi128_si32(sums)) +
-                   static_cast<std::uint64_t>(_mm_cvtsi128_si32(_mm_unpackhi_epi64(sums, sums)));
+      if (v < vectors) lanes0 = _mm_sub_epi8(lanes0, matches(v, bin));
+      // One sum per 8 lanes, in 64-bit halves.
+      const __m128i sums = _mm_add_epi64(_mm_sad_epu8(lanes0, zero), _mm_sad_epu8(lanes1, zero));
+      const std::uint64_t c =
+          static_cast<std::uint64_t>(_mm_cvtsi128_si32(sums)) +
+          static_cast<std::uint64_t>(_mm_cvtsi128_si32(_mm_unpackhi_epi64(sums, sums)));
+      counts[b] += c;
+      counted += c;
     }
+    counts[k - 1] += 16 * vectors - counted;
     i += 16 * vectors;
   }
 #else
