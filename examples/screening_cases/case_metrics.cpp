@@ -55,21 +55,8 @@ CaseMetrics measure_case(const hbos_test::ScreeningCase& c,
     }
     for (std::size_t s = 0; s < screens.size(); ++s) {
       const hbos::ScreenResult<double>& r = screens[s].screen(pair.matches);
-      Tally& t = m.tallies[s];
-      for (Eigen::Index i = 0; i < pair.size(); ++i) {
-        const auto k = static_cast<std::size_t>(i);
-        const bool kept = r.inlier(i);
-        if (pair.dynamic[k] != 0) {
-          ++t.dynamics;
-          t.dynamic_kept += kept ? 1 : 0;
-        } else if (pair.gross[k] != 0) {
-          ++t.gross;
-          t.gross_kept += kept ? 1 : 0;
-        } else {
-          ++t.statics;
-          t.static_dropped += kept ? 0 : 1;
-        }
-      }
+      for (Eigen::Index i = 0; i < pair.size(); ++i)
+        hbos_test::count_match(m.tallies[s], pair, i, r.inlier(i));
     }
   }
   return m;

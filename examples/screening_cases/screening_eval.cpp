@@ -52,6 +52,19 @@ nlohmann::ordered_json read_manifest(const std::string& dir) {
   return m;
 }
 
+// The acceptance rule's verdict per case, as `verdict` gives it, and the count that pass.
+template <class Verdict>
+std::string acceptance_table(const std::vector<CaseMetrics>& all, Verdict verdict) {
+  std::string md = "| case | result | why |\n|---|---|---|\n";
+  int passed = 0;
+  for (const CaseMetrics& m : all) {
+    const auto v = verdict(m);
+    passed += v.pass ? 1 : 0;
+    md += fmt::format("| {} | {} | {} |\n", m.name, v.pass ? "pass" : "FAIL", v.reason);
+  }
+  return md + fmt::format("\n{} of {} cases pass.\n", passed, all.size());
+}
+
 // One baseline at a screen's static loss: the dynamics it keeps (its setting), and whether the
 // screen, keeping `kept` %, keeps fewer (✓) or not (✗).
 std::string at_loss_cell(const hbos_test::AtStaticLoss& at, double kept, bool static_sequence) {
@@ -132,16 +145,10 @@ std::string equal_loss_markdown(const std::vector<CaseMetrics>& all,
       [](const CaseMetrics& m) -> const auto& { return m.default_with_history; },
       [](const hbos::cases::EqualLoss& e) -> const auto& { return e.at_default_with_history; },
       false);
-  md +=
-      "\nThe acceptance rule (issue 7 item 7) with these counts in place of the default's:\n\n"
-      "| case | result | why |\n|---|---|---|\n";
-  int passed = 0;
-  for (const CaseMetrics& m : all) {
-    const auto v = hbos::cases::acceptance_with_history(m, strategies);
-    passed += v.pass ? 1 : 0;
-    md += fmt::format("| {} | {} | {} |\n", m.name, v.pass ? "pass" : "FAIL", v.reason);
-  }
-  md += fmt::format("\n{} of {} cases pass.\n", passed, all.size());
+  md += "\nThe acceptance rule (issue 7 item 7) with these counts in place of the default's:\n\n";
+  md += acceptance_table(all, [&](const CaseMetrics& m) {
+    return hbos::cases::acceptance_with_history(m, strategies);
+  });
   return md;
 }
 
@@ -169,14 +176,9 @@ std::string markdown(const std::vector<CaseMetrics>& all, const nlohmann::ordere
       "\n#### Acceptance (issue 7 item 7) per case\n\n"
       "Static sequence: default's static loss within chi2's + 0.5 points. Otherwise: default "
       "keeps fewer dynamics than chi2 and than the 0.8 quantile at no more static loss than "
-      "chi2.\n\n| case | result | why |\n|---|---|---|\n";
-  int passed = 0;
-  for (const CaseMetrics& m : all) {
-    const auto v = hbos::cases::acceptance(m, strategies);
-    passed += v.pass ? 1 : 0;
-    md += fmt::format("| {} | {} | {} |\n", m.name, v.pass ? "pass" : "FAIL", v.reason);
-  }
-  md += fmt::format("\n{} of {} cases pass.\n", passed, all.size());
+      "chi2.\n\n";
+  md += acceptance_table(
+      all, [&](const CaseMetrics& m) { return hbos::cases::acceptance(m, strategies); });
   md += equal_loss_markdown(all, strategies);
   md +=
       "\n#### The rough pose and the noise\n\n"

@@ -70,6 +70,28 @@ struct ByteBinConstants {
   Scalar lo = 0, inv = 0, last = 0;
 };
 
+#ifdef HBOS_DETAIL_BYTE_BINS_SSE2
+/// Sixteen rows at a time of two interleaved features: `four(p, first, second)` gives the int32
+/// bins of the four rows at p (eight values) per feature; they are stored as bytes in b0 and b1.
+/// Returns the rows done (a multiple of 16).
+template <class Scalar, class Four>
+std::size_t interleaved_sixteens(const Scalar* x, std::size_t m, const Four& four, std::uint8_t* b0,
+                                 std::uint8_t* b1) {
+  std::size_t r = 0;
+  for (; m - r >= 16; r += 16) {
+    const Scalar* p = x + 2 * r;
+    __m128i a0, a1, a2, a3, s0, s1, s2, s3;
+    four(p, a0, s0);
+    four(p + 8, a1, s1);
+    four(p + 16, a2, s2);
+    four(p + 24, a3, s3);
+    store_16_bins(a0, a1, a2, a3, b0 + r);
+    store_16_bins(s0, s1, s2, s3, b1 + r);
+  }
+  return r;
+}
+#endif
+
 /// The bins of uniform_byte_bins for two features stored row by row, as a row-major matrix with
 /// two columns (numpy's C order) stores them: for r < m, x[2 r] is feature 0's value and
 /// x[2 r + 1] feature 1's; b0[r] and b1[r] get their bins. Each value takes the same arithmetic
@@ -96,16 +118,7 @@ void interleaved_byte_bins_2(const Scalar* x, std::size_t m, const ByteBinConsta
       first = _mm_unpacklo_epi64(r01, r23);
       second = _mm_unpackhi_epi64(r01, r23);
     };
-    for (; m - r >= 16; r += 16) {
-      const double* p = x + 2 * r;
-      __m128i a0, a1, a2, a3, s0, s1, s2, s3;
-      four(p, a0, s0);
-      four(p + 8, a1, s1);
-      four(p + 16, a2, s2);
-      four(p + 24, a3, s3);
-      store_16_bins(a0, a1, a2, a3, b0 + r);
-      store_16_bins(s0, s1, s2, s3, b1 + r);
-    }
+    r = interleaved_sixteens(x, m, four, b0, b1);
   } else if constexpr (std::is_same_v<Scalar, float>) {
     // Two rows per vector: lanes 0 and 2 are feature 0, lanes 1 and 3 feature 1.
     const __m128 vlo = _mm_set_ps(c1.lo, c0.lo, c1.lo, c0.lo),
@@ -120,16 +133,7 @@ void interleaved_byte_bins_2(const Scalar* x, std::size_t m, const ByteBinConsta
       first = _mm_castps_si128(_mm_shuffle_ps(r01, r23, _MM_SHUFFLE(2, 0, 2, 0)));
       second = _mm_castps_si128(_mm_shuffle_ps(r01, r23, _MM_SHUFFLE(3, 1, 3, 1)));
     };
-    for (; m - r >= 16; r += 16) {
-      const float* p = x + 2 * r;
-      __m128i a0, a1, a2, a3, s0, s1, s2, s3;
-      four(p, a0, s0);
-      four(p + 8, a1, s1);
-      four(p + 16, a2, s2);
-      four(p + 24, a3, s3);
-      store_16_bins(a0, a1, a2, a3, b0 + r);
-      store_16_bins(s0, s1, s2, s3, b1 + r);
-    }
+    r = interleaved_sixteens(x, m, four, b0, b1);
   }
 #endif
   for (; r < m; ++r) {
