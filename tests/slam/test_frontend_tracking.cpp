@@ -107,6 +107,7 @@ TEST_CASE("degraded mask: the mask's neighbourhood, passed to the screen, reject
   config.scenario.add_person = true;
   config.mask.source = hbos::slam::MaskSource::kDegraded;
   const int frames = 37;
+  config.screen.mask_evidence = false;
   const Outcome off = track_embedded(config, frames);
   config.screen.mask_evidence = true;
   const Outcome on = track_embedded(config, frames);

@@ -108,8 +108,10 @@ struct ScreenStageConfig {
   int rounds = 4;                 ///< screen -> refine -> re-screen rounds (ORB-SLAM2 runs 4)
   Eigen::Index min_inliers = 10;  ///< stop re-fitting below this many survivors
   /// pass each match's distance to the frame's dynamic-object mask to the screen (the mask's
-  /// neighbourhood evidence of hbos's default; the baselines ignore it); only with a mask
-  bool mask_evidence = false;
+  /// neighbourhood evidence of hbos's default; the baselines ignore it); only with a mask.
+  /// On: it lowered the default's ATE with leaky masks and changed nothing elsewhere
+  /// (docs/slam_demo.md, "The mask's neighbourhood").
+  bool mask_evidence = true;
 
   /// Selects a strategy of hbos::named_strategies() by name, or "none".
   /// \throws hbos::InvalidArgument naming the value and the choices.
