@@ -18,7 +18,8 @@ Tracker::Tracker(const Config& config, const CameraModel& camera)
       refiner_(config.refinement, camera.pinhole()),
       scale_factor_(config.extraction.scale_factor),
       min_matches_(static_cast<int>(config.screen.min_inliers)),
-      pass_mask_distance_(passes_mask_distance(config)) {}
+      mask_reach_px_(mask_evidence_reach_px(config)),
+      pass_mask_distance_(mask_reach_px_ > 0.0) {}
 
 TrackResult Tracker::track(const Frame& frame) {
   TrackResult out;
@@ -43,7 +44,7 @@ TrackResult Tracker::track(const Frame& frame) {
 
   // 3. Each match: the previous keypoint back-projected to 3D, the current keypoint observing it.
   const hbos::PinholeCamerad camera = refiner_.camera();
-  const MaskDistance to_mask(pass_mask_distance_ ? frame.mask : cv::Mat());
+  const MaskDistance to_mask(pass_mask_distance_ ? frame.mask : cv::Mat(), mask_reach_px_);
   MatchEvidence evidence;
   std::vector<Eigen::Vector3d> points_prev;
   std::vector<Eigen::Vector2d> observed;

@@ -81,6 +81,7 @@ class Tracker {
   PoseRefiner refiner_;
   float scale_factor_;
   int min_matches_;
+  double mask_reach_px_;     ///< [px] how far from the mask the screen's evidence reaches
   bool pass_mask_distance_;  ///< the screen sees each match's distance to the frame's mask
 
   std::optional<Features> previous_;

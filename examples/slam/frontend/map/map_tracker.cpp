@@ -270,8 +270,9 @@ void MapTracker::match_local_map(const Frame& frame, const Features& current,
 MapTracker::Matched MapTracker::gather(const Frame& frame, const Features& current,
                                        const std::vector<int>& point_of, TrackResult& out) const {
   Matched m;
-  const bool mask_distances = passes_mask_distance(config_);
-  const MaskDistance to_mask(mask_distances ? frame.mask : cv::Mat());
+  const double reach_px = mask_evidence_reach_px(config_);
+  const bool mask_distances = reach_px > 0.0;
+  const MaskDistance to_mask(mask_distances ? frame.mask : cv::Mat(), reach_px);
   for (std::size_t k = 0; k < point_of.size(); ++k) {
     const int id = point_of[k];
     if (id < 0) continue;
