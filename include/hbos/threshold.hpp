@@ -126,8 +126,16 @@ typename Derived::Scalar compute_threshold(const Eigen::DenseBase<Derived>& scor
     // PyOD: percentile(scores, 100 * (1 - c)); numpy divides by 100 again, which is exact for
     // the q values PyOD produces (q = 0.9 for c = 0.1), so use the same arithmetic.
     const double q = (100.0 * (1.0 - r->contamination)) / 100.0;
-    Scalar* data = copy_to_scratch();
-    return detail::numpy_percentile_linear(data, data + n, q);
+    if constexpr (Derived::IsVectorAtCompileTime &&
+                  static_cast<bool>(Derived::Flags & Eigen::DirectAccessBit) &&
+                  Derived::InnerStrideAtCompileTime == 1) {
+      // Contiguous scores are selected from where they are: no copy (scratch is the work area).
+      return detail::numpy_percentile_linear(scores.derived().data(), static_cast<std::size_t>(n),
+                                             q, scratch);
+    } else {
+      Scalar* data = copy_to_scratch();
+      return detail::numpy_percentile_linear(data, data + n, q);
+    }
   }
   if (const auto* r = std::get_if<MedianMad>(&rule)) {
     Scalar* data = copy_to_scratch();

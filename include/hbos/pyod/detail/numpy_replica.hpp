@@ -248,67 +248,13 @@ class BucketedColumn {
   std::vector<Scalar> values_;  // grouped by fine cell; cells above kScanLimit sorted
 };
 
-/// The i-th and (i+1)-th smallest of n values (0-based, i + 1 < n), exactly, without reordering
-/// them. Large inputs: the ranks are bracketed by two values of a sorted sample, one pass counts
-/// what lies below the bracket and gathers what lies inside it, and only that slice is selected
-/// from. Small inputs, or a bracket that missed, fall back to std::nth_element on a copy.
-template <class Scalar>
-std::pair<Scalar, Scalar> select_adjacent(const Scalar* values, Eigen::Index n, Eigen::Index i,
-                                          std::vector<Scalar>& scratch) {
-  auto by_nth_element = [&](Scalar* first, Eigen::Index m, Eigen::Index k) {
-    std::nth_element(first, first + k, first + m);
-    return std::make_pair(first[k], *std::min_element(first + k + 1, first + m));
-  };
-  constexpr Eigen::Index kSample = 4096;
-  if (n >= 16 * kSample) {
-    std::vector<Scalar> sample(static_cast<std::size_t>(kSample));
-    const Eigen::Index stride = n / kSample;
-    for (Eigen::Index s = 0; s < kSample; ++s)
-      sample[static_cast<std::size_t>(s)] = values[s * stride];
-    std::sort(sample.begin(), sample.end());
-    // +-4 standard deviations of the sample rank: a miss (and its fallback) is very rare.
-    const Eigen::Index centre = static_cast<Eigen::Index>(
-        static_cast<double>(i) / static_cast<double>(n) * static_cast<double>(kSample));
-    const Eigen::Index margin = 4 * 32 + 8;  // 4 * sqrt(kSample / 4) + slack
-    const bool open_below = centre - margin < 0;
-    const bool open_above = centre + margin >= kSample;
-    const Scalar low = open_below ? Scalar(0) : sample[static_cast<std::size_t>(centre - margin)];
-    const Scalar high = open_above ? Scalar(0) : sample[static_cast<std::size_t>(centre + margin)];
-    // The bracket holds ~2 * margin / kSample = 7 % of the values unless they are heavily tied;
-    // gather at most n / 4 of them (a branch-free write, kept only when inside).
-    const Eigen::Index capacity = n / 4;
-    scratch.resize(static_cast<std::size_t>(capacity + 1));
-    Eigen::Index below = 0;
-    Eigen::Index inside = 0;
-    for (Eigen::Index k = 0; k < n; ++k) {
-      const Scalar x = values[k];
-      const bool is_below = !open_below && x < low;
-      const bool is_inside = !is_below && (open_above || !(high < x));
-      scratch[static_cast<std::size_t>(std::min(inside, capacity))] = x;
-      below += is_below ? 1 : 0;
-      inside += is_inside ? 1 : 0;
-    }
-    if (inside <= capacity && below <= i && i + 1 < below + inside) {
-      return by_nth_element(scratch.data(), inside, i - below);
-    }
-  }
-  scratch.assign(values, values + n);
-  return by_nth_element(scratch.data(), n, i);
-}
-
 /// PyOD's threshold_: numpy.percentile(scores, 100 (1 - contamination)), method "linear",
-/// bit-identical to numpy (the same result as hbos::compute_threshold with Contamination, faster
-/// on large score vectors).
+/// bit-identical to numpy (the same result as hbos::compute_threshold with Contamination).
 template <class Scalar>
 [[nodiscard]] Scalar pyod_threshold(const Scalar* scores, Eigen::Index n, double contamination,
                                     std::vector<Scalar>& scratch) {
   const double q = (100.0 * (1.0 - contamination)) / 100.0;
-  const double v = static_cast<double>(n - 1) * q;
-  const auto i = static_cast<Eigen::Index>(std::floor(v));
-  if (i + 1 >= n) return *std::max_element(scores, scores + n);
-  const auto [lo, hi] = select_adjacent(scores, n, i, scratch);
-  return static_cast<Scalar>(
-      numpy_lerp(static_cast<double>(lo), static_cast<double>(hi), v - static_cast<double>(i)));
+  return numpy_percentile_linear(scores, static_cast<std::size_t>(n), q, scratch);
 }
 
 /// Reusable buffers for pyod_optimal_bins.
