@@ -15,7 +15,9 @@
 #include <hbos/pyod/merge.hpp>
 #include <hbos/pyod/model.hpp>
 #include <hbos/pyod/model_file.hpp>
+#include <hbos/threshold.hpp>
 
+#include <cstdint>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -62,9 +64,23 @@ py::array_t<double> to_numpy(const Eigen::VectorXd& v) {
 
 /// The default model: `bins` coarse equal-width bins (or a rule name) x `shifts`.
 struct DefaultModel {
+  explicit DefaultModel(hbos::Hbosd m, py::array_t<double> scores = py::array_t<double>(),
+                        std::optional<double> t = std::nullopt, py::object l = py::none())
+      : model(std::move(m)),
+        training_scores(std::move(scores)),
+        threshold(t),
+        labels(std::move(l)) {}
   hbos::Hbosd model;
   py::array_t<double> training_scores;  // empty for a loaded or merged model
+  // PyOD's threshold_ and labels_ of the training scores, when fitted with a contamination.
+  std::optional<double> threshold;
+  py::object labels;
 };
+
+/// PyOD's labels_, `(scores > threshold).astype(int)`, written once into the array Python gets.
+void label_into(const double* scores, Eigen::Index n, double threshold, std::int64_t* labels) {
+  for (Eigen::Index i = 0; i < n; ++i) labels[i] = scores[i] > threshold ? 1 : 0;
+}
 
 hbos::HbosParams default_params(const std::string& bins, Eigen::Index shifts) {
   hbos::HbosParams params;
@@ -77,17 +93,31 @@ hbos::HbosParams default_params(const std::string& bins, Eigen::Index shifts) {
   return params;
 }
 
-DefaultModel fit_default(const Array& x, const std::string& bins, Eigen::Index shifts) {
+/// Fits and scores X; with a contamination also PyOD's threshold_ (numpy's percentile, bit for
+/// bit, hbos::compute_threshold) and labels_, so that HBOS().fit does no pass over the scores in
+/// numpy.
+DefaultModel fit_default(const Array& x, const std::string& bins, Eigen::Index shifts,
+                         std::optional<double> contamination) {
   const hbos::HbosParams params = default_params(bins, shifts);
   const Strided m = as_matrix(x);
   py::array_t<double> scores = py::array_t<double>(m.rows());
   Eigen::Map<Eigen::VectorXd> out = as_vector(scores);
+  std::optional<py::array_t<std::int64_t>> labels;
+  if (contamination) labels.emplace(m.rows());
   std::optional<hbos::Hbosd> model;
+  std::optional<double> threshold;
   {
     py::gil_scoped_release release;
     model.emplace(hbos::Hbosd::fit_and_score(m, out, params));
+    if (contamination) {
+      std::vector<double> scratch;
+      threshold = hbos::compute_threshold(out, hbos::Contamination{*contamination}, scratch);
+      label_into(out.data(), out.size(), *threshold, labels->mutable_data());
+    }
   }
-  return DefaultModel{std::move(*model), std::move(scores)};
+  py::object label_array = py::none();
+  if (labels) label_array = std::move(*labels);
+  return DefaultModel(std::move(*model), std::move(scores), threshold, std::move(label_array));
 }
 
 // ---- the sharded fit: a range summary is (lo, hi, rows), a count summary a list of int64 arrays
@@ -154,7 +184,7 @@ DefaultModel model_from_counts(const Array& lo, const Array& hi, Eigen::Index ro
     if (feature.ndim() != 1) throw std::invalid_argument("each feature's counts must be 1-D");
     total.counts.emplace_back(feature.data(), feature.data() + feature.size());
   }
-  return DefaultModel{plan.model(total), py::array_t<double>()};
+  return DefaultModel(plan.model(total));
 }
 
 // ---- the PyOD mode's sharded fit: the same range summary, PyOD's parameters, then the counts
@@ -208,7 +238,8 @@ PYBIND11_MODULE(_hbos, m) {
   py::register_exception<hbos::InvalidArgument>(m, "InvalidArgument", PyExc_ValueError);
 
   py::class_<DefaultModel>(m, "DefaultModel")
-      .def_static("fit", &fit_default, py::arg("X"), py::arg("bins"), py::arg("shifts"))
+      .def_static("fit", &fit_default, py::arg("X"), py::arg("bins"), py::arg("shifts"),
+                  py::arg("contamination") = py::none())
       .def("decision_function",
            [](const DefaultModel& self, const Array& x) {
              const Strided mx = as_matrix(x);
@@ -222,22 +253,22 @@ PYBIND11_MODULE(_hbos, m) {
            })
       .def_property_readonly("training_scores",
                              [](const DefaultModel& self) { return self.training_scores; })
+      .def_property_readonly("threshold", [](const DefaultModel& self) { return self.threshold; })
+      .def_property_readonly("labels", [](const DefaultModel& self) { return self.labels; })
       .def_property_readonly("n_features",
                              [](const DefaultModel& s) { return s.model.n_features(); })
       .def("save", [](const DefaultModel& self,
                       const std::string& path) { hbos::save_model(self.model, path); })
-      .def_static("load",
-                  [](const std::string& path) {
-                    return DefaultModel{hbos::load_hbos<double>(path), py::array_t<double>()};
-                  })
+      .def_static(
+          "load",
+          [](const std::string& path) { return DefaultModel(hbos::load_hbos<double>(path)); })
       .def_static("from_counts", &model_from_counts, py::arg("lo"), py::arg("hi"), py::arg("rows"),
                   py::arg("bins"), py::arg("shifts"), py::arg("counts"))
       // Pickled as its model-file text (exact: scores come back bit for bit), so a model
       // travels to Dask workers; the training scores stay behind.
       .def(py::pickle([](const DefaultModel& self) { return hbos::to_model_text(self.model); },
                       [](const std::string& text) {
-                        return DefaultModel{hbos::hbos_from_model_text<double>(text, "pickle"),
-                                            py::array_t<double>()};
+                        return DefaultModel(hbos::hbos_from_model_text<double>(text, "pickle"));
                       }));
 
   py::class_<hbos::PyodHbosd>(m, "PyodModel")
@@ -265,6 +296,13 @@ PYBIND11_MODULE(_hbos, m) {
       .def_property_readonly("decision_scores",
                              [](const hbos::PyodHbosd& s) { return to_numpy(s.decision_scores()); })
       .def_property_readonly("threshold", &hbos::PyodHbosd::threshold)
+      .def_property_readonly("labels",
+                             [](const hbos::PyodHbosd& s) {
+                               const Eigen::VectorXi& l = s.labels();
+                               py::array_t<std::int64_t> out(l.size());
+                               std::copy(l.data(), l.data() + l.size(), out.mutable_data());
+                               return out;
+                             })
       .def_property_readonly("n_features", &hbos::PyodHbosd::n_features)
       .def("bin_edges",
            [](const hbos::PyodHbosd& s, Eigen::Index j) { return to_numpy(s.bin_edges(j)); })

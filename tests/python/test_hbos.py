@@ -50,6 +50,24 @@ def test_pyod_mode_reproduces_pyod(name, tag):
     assert np.array_equal(clf._model.bin_edges(0), np.array(edges[0]))
 
 
+@pytest.mark.parametrize("mode", ["default", "pyod"])
+@pytest.mark.parametrize("contamination", [0.1, 0.37, 0.5, 1e-6])
+def test_threshold_and_labels_are_numpys(mode, contamination):
+    # threshold_ and labels_ come from the C++ core; they must be numpy's percentile (bit for
+    # bit) and (scores > threshold).astype(int), on inputs below and above the size where the
+    # selection leaves std::nth_element.
+    rng = np.random.default_rng(5)
+    for X in (load("cardio", "X.csv"), rng.standard_normal((100_000, 2)),
+              np.round(rng.standard_normal((30_000, 3)), 1)):
+        clf = HBOS(contamination=contamination, mode=mode).fit(X)
+        s = clf.decision_scores_
+        expected = float(np.percentile(s, 100.0 * (1.0 - contamination)))
+        assert isinstance(clf.threshold_, float)
+        assert clf.threshold_ == expected
+        assert clf.labels_.dtype == (s > expected).astype(int).dtype
+        assert np.array_equal(clf.labels_, (s > expected).astype(int))
+
+
 def test_default_mode_is_scale_invariant():
     X = load("cardio", "X.csv")
     # Power-of-two units change no rounding, so the scores must be the same bits; other units

@@ -36,6 +36,11 @@ def _as_float64(X):
     return X
 
 
+def _as_int(labels):
+    """The C++ core's int64 labels as numpy's default int (what ``.astype(int)`` gives)."""
+    return labels if labels.dtype == np.dtype(int) else labels.astype(int)
+
+
 class HBOS:
     """PyOD's ``HBOS(n_bins=10, alpha=0.1, tol=0.5, contamination=0.1)`` plus ``mode``.
 
@@ -69,13 +74,13 @@ class HBOS:
                                               float(self.alpha), float(self.tol),
                                               float(self.contamination))
             self.decision_scores_ = self._model.decision_scores
-            self.threshold_ = self._model.threshold
         else:
-            self._model = _hbos.DefaultModel.fit(X, _default_bins(self.n_bins), _SHIFTS)
+            # The C++ core also takes numpy's percentile (bit for bit) and the labels.
+            self._model = _hbos.DefaultModel.fit(X, _default_bins(self.n_bins), _SHIFTS,
+                                                 float(self.contamination))
             self.decision_scores_ = self._model.training_scores
-            self.threshold_ = float(np.percentile(self.decision_scores_,
-                                                  100.0 * (1.0 - self.contamination)))
-        self.labels_ = (self.decision_scores_ > self.threshold_).astype(int)
+        self.threshold_ = self._model.threshold
+        self.labels_ = _as_int(self._model.labels)
         return self
 
     def _fitted(self):
@@ -113,7 +118,7 @@ class HBOS:
             self._model = _hbos.PyodModel.load(path)
             self.decision_scores_ = self._model.decision_scores
             self.threshold_ = self._model.threshold
-            self.labels_ = (self.decision_scores_ > self.threshold_).astype(int)
+            self.labels_ = _as_int(self._model.labels)
         else:
             self = cls(mode="default")
             self._model = _hbos.DefaultModel.load(path)
