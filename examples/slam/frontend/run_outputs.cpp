@@ -120,9 +120,13 @@ std::vector<std::string> write_run_outputs(const std::string& dir, const RunResu
   written.push_back(path("summary.json"));
 
   if (run.figure) {
-    const std::string what = fmt::format("frame {} | {} scenario, mask {}, screen {}",
-                                         run.figure->frame.index, scenario_name(config.scenario),
-                                         to_string(config.mask.source), config.screen.name);
+    // Says what was done to the frames rather than the scenario's name: "static" means that no
+    // person was composited in, and a rendered sequence (or one with masks from files) has
+    // people of its own.
+    const std::string what =
+        fmt::format("frame {} | {}, mask {}, screen {}", run.figure->frame.index,
+                    config.scenario.add_person ? "person composited in" : "no person composited in",
+                    to_string(config.mask.source), config.screen.name);
     write_png(path("matches.png"), draw_match_figure(*run.figure, what));
     written.push_back(path("matches.png"));
     if (!run.figure->result.screen.magnitude.empty()) {
