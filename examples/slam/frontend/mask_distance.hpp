@@ -21,7 +21,7 @@ class MaskDistance {
  public:
   /// `mask`: CV_8U, 255 = masked (Frame::mask); distances are measured up to `reach_px` (>= 0).
   /// Each lookup scans the square of that reach around the keypoint, so the cost follows the
-  /// keypoints, not the image (a whole-image distance transform cost several times the screen).
+  /// keypoints, not the image (bench/bench_mask_distance compares a whole-image transform).
   MaskDistance(const cv::Mat& mask, double reach_px);
 
   /// [px] Euclidean distance from `pixel` (image coordinates, as cv::KeyPoint::pt, rounded to
