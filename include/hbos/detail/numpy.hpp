@@ -233,13 +233,15 @@ std::optional<std::pair<Scalar, Scalar>> radix_select_adjacent(
       const Key hi = radix_key(hi_value);
       int shift = 0;
       while (((hi - lo) >> shift) >= kBuckets) ++shift;
-      constexpr auto kTop = static_cast<Scalar>(kBuckets - 1);
-      // The linear map's position of x, clamped to [0, kTop] (x outside [lo, hi] only in the
-      // sampled round; an overflow to infinity clamps too). Its integer part is the bucket.
-      auto position = [lo_value, scale, kTop](Scalar x) {
+      // Not constexpr: a copy the lambda captures (Clang calls capturing a constexpr unneeded,
+      // GCC reads using it uncaptured as an odr-use).
+      const auto last_position = static_cast<Scalar>(kBuckets - 1);
+      // The linear map's position of x, clamped to [0, last_position] (x outside [lo, hi] only in
+      // the sampled round; an overflow to infinity clamps too). Its integer part is the bucket.
+      auto position = [lo_value, scale, last_position](Scalar x) {
         Scalar u = (x - lo_value) * scale;
         u = u > Scalar(0) ? u : Scalar(0);
-        return u < kTop ? u : kTop;
+        return u < last_position ? u : last_position;
       };
       auto key_bucket = [&](Scalar x) {
         x = x > lo_value ? x : lo_value;
