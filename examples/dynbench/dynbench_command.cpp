@@ -90,6 +90,14 @@ void add_options(CLI::App& app, CommandOptions& o) {
   app.add_flag("--mask-evidence,!--no-mask-evidence", s.base.screen.mask_evidence,
                "pass each match's distance to the dynamic-object mask to the screen")
       ->capture_default_str();
+  app.add_flag("--track-history,!--no-track-history", s.base.screen.track_history,
+               "frame tracker: pass each match chain's forgetting-weighted outlier share to "
+               "the screen (the default screen's persistence evidence)")
+      ->capture_default_str();
+  app.add_option("--history-forgetting", s.base.screen.history_forgetting,
+                 "weight of the past per screening in --track-history's share")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1.0));
   app.add_option("--rounds", s.base.screen.rounds, "screen -> refine -> re-screen rounds")
       ->capture_default_str()
       ->check(CLI::Range(1, 20));

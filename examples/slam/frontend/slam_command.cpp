@@ -101,6 +101,14 @@ void add_options(CLI::App& app, CommandOptions& o) {
                "pass each match's distance to the dynamic-object mask to the screen (the "
                "default screen's mask-neighbourhood evidence)")
       ->capture_default_str();
+  app.add_flag("--track-history,!--no-track-history", c.screen.track_history,
+               "frame tracker: pass each match chain's forgetting-weighted outlier share to "
+               "the screen (the default screen's persistence evidence)")
+      ->capture_default_str();
+  app.add_option("--history-forgetting", c.screen.history_forgetting,
+                 "weight of the past per screening in --track-history's share")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1.0));
   app.add_option("--rounds", c.screen.rounds, "screen -> refine -> re-screen rounds")
       ->capture_default_str()
       ->check(CLI::Range(1, 20));

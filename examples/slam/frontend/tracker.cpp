@@ -2,13 +2,23 @@
 
 #include "frontend/mask_distance.hpp"
 
+#include <hbos/error.hpp>
 #include <hbos/screening/residual_field.hpp>
+#include <hbos/screening/strategies.hpp>
 
 #include <chrono>
 #include <cstdint>
+#include <string>
 #include <utility>
+#include <variant>
 
 namespace hbos::slam {
+
+bool frame_history_wanted(const Config& config) {
+  if (!config.screen.track_history || !config.screen.screen.has_value()) return false;
+  const auto* hbos_screen = std::get_if<hbos::HbosScreen>(&config.screen.screen->strategy);
+  return hbos_screen != nullptr && hbos_screen->gate.enabled && hbos_screen->history.enabled;
+}
 
 Tracker::Tracker(const Config& config, const CameraModel& camera)
     : extractor_(config.extraction, camera),
@@ -19,7 +29,13 @@ Tracker::Tracker(const Config& config, const CameraModel& camera)
       scale_factor_(config.extraction.scale_factor),
       min_matches_(static_cast<int>(config.screen.min_inliers)),
       mask_reach_px_(mask_evidence_reach_px(config)),
-      pass_mask_distance_(mask_reach_px_ > 0.0) {}
+      pass_mask_distance_(mask_reach_px_ > 0.0),
+      pass_history_(frame_history_wanted(config)),
+      forgetting_(config.screen.history_forgetting) {
+  if (!(forgetting_ >= 0.0 && forgetting_ <= 1.0))
+    throw InvalidArgument("screen history forgetting must lie in [0, 1], got " +
+                          std::to_string(forgetting_));
+}
 
 TrackResult Tracker::track(const Frame& frame) {
   TrackResult out;
@@ -32,6 +48,7 @@ TrackResult Tracker::track(const Frame& frame) {
   Features current = extractor_.extract(frame);
   stats.features = static_cast<int>(current.size());
   if (!previous_) {
+    if (pass_history_) previous_history_.assign(current.size(), OutlierShare{});
     previous_ = std::move(current);
     stats.tracked = true;
     out.T_world_camera = T_world_previous_;
@@ -57,6 +74,7 @@ TrackResult Tracker::track(const Frame& frame) {
     sigma.push_back(hbos::sigma_from_octave(current.keypoints[c].octave, scale_factor_));
     if (pass_mask_distance_)
       evidence.mask_distance_px.push_back(to_mask.at(current.keypoints[c].pt));
+    if (pass_history_) evidence.outlier_history.push_back(previous_history_[p].share());
     out.matches.push_back({{current.keypoints[c].pt.x, current.keypoints[c].pt.y},
                            {previous.keypoints[p].pt.x, previous.keypoints[p].pt.y},
                            previous.on_person[p] != 0 || current.on_person[c] != 0,
@@ -112,11 +130,27 @@ TrackResult Tracker::track(const Frame& frame) {
   T_world_previous_ = T_world_previous_ * T_cur_prev.inverse();
   velocity_ = T_cur_prev;
   out.T_world_camera = T_world_previous_;
+  if (pass_history_) carry_history(pairs, out.screen.inlier, supported, current.size());
   previous_ = std::move(current);
 
   // 8. Statistics against the person label.
   count_match_statistics(out);
   return out;
+}
+
+void Tracker::carry_history(const std::vector<FeatureMatch>& pairs,
+                            const std::vector<std::uint8_t>& inlier, bool tracked,
+                            std::size_t current_size) {
+  // Each matched keypoint continues its predecessor's chain; an unmatched one starts afresh.
+  // The decision is recorded only when the frame was tracked: an untracked frame's screen
+  // judged residuals under a pose nothing supports.
+  std::vector<OutlierShare> current(current_size);
+  for (std::size_t i = 0; i < pairs.size(); ++i) {
+    OutlierShare& chain = current[static_cast<std::size_t>(pairs[i].current)];
+    chain = previous_history_[static_cast<std::size_t>(pairs[i].previous)];
+    if (tracked && i < inlier.size()) chain.record(inlier[i] == 0, forgetting_);
+  }
+  previous_history_ = std::move(current);
 }
 
 void count_match_statistics(TrackResult& out) {

@@ -8,6 +8,7 @@
 #include "frontend/frame.hpp"
 #include "frontend/frame_matching.hpp"
 #include "frontend/orb_extraction.hpp"
+#include "frontend/outlier_share.hpp"
 #include "frontend/pose_refiner.hpp"
 #include "frontend/residual_screen.hpp"
 #include "frontend/rough_pose.hpp"
@@ -15,6 +16,8 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include <cstddef>
+#include <cstdint>
 #include <limits>
 #include <optional>
 #include <vector>
@@ -62,6 +65,11 @@ struct TrackResult {
 /// label, what the screen kept and dropped (out.stats); both trackers end a frame with it.
 void count_match_statistics(TrackResult& out);
 
+/// Whether the frame tracker passes its match chains' outlier shares to the screen: asked for
+/// (ScreenStageConfig::track_history) and a screen that reads them (hbos's gated screen with its
+/// history evidence on).
+[[nodiscard]] bool frame_history_wanted(const Config& config);
+
 /// Not thread-safe; one per sequence.
 class Tracker {
  public:
@@ -74,6 +82,11 @@ class Tracker {
   TrackResult track(const Frame& frame);
 
  private:
+  /// Moves the chains' outlier shares onto the current frame's keypoints (previous_history_).
+  void carry_history(const std::vector<FeatureMatch>& pairs,
+                     const std::vector<std::uint8_t>& inlier, bool tracked,
+                     std::size_t current_size);
+
   OrbExtractor extractor_;
   FrameMatcher matcher_;
   RoughPoseEstimator rough_pose_;
@@ -83,8 +96,12 @@ class Tracker {
   int min_matches_;
   double mask_reach_px_;     ///< [px] how far from the mask the screen's evidence reaches
   bool pass_mask_distance_;  ///< the screen sees each match's distance to the frame's mask
+  bool pass_history_;        ///< the screen sees each match's chain's outlier share
+  double forgetting_;
 
   std::optional<Features> previous_;
+  /// per keypoint of previous_ (when pass_history_): the outlier share of its match chain
+  std::vector<OutlierShare> previous_history_;
   Eigen::Isometry3d T_world_previous_ = Eigen::Isometry3d::Identity();
   Eigen::Isometry3d velocity_ = Eigen::Isometry3d::Identity();  ///< last T_cur_prev
 };

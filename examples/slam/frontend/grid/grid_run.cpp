@@ -26,11 +26,12 @@ namespace {
 std::string grid_run_settings(const Config& c, const PersonVariant& v, int frames) {
   return fmt::format(
       "dataset={} frames={} camera={} tracker={} person={} depth={} speed={} start={} mask={} "
-      "screen={} rounds={} mask_evidence={} rough={} ransac_px={} features={}",
+      "screen={} rounds={} mask_evidence={} track_history={} forgetting={} rough={} ransac_px={} "
+      "features={}",
       c.dataset.path, frames, c.dataset.camera, to_string(c.tracker), c.scenario.person_dir,
       v.depth_m, v.speed_px_per_frame, v.start_x_px, to_string(c.mask.source), c.screen.name,
-      c.screen.rounds, c.screen.mask_evidence, to_string(c.rough_pose.method),
-      c.rough_pose.ransac_threshold_px, c.extraction.features);
+      c.screen.rounds, c.screen.mask_evidence, c.screen.track_history, c.screen.history_forgetting,
+      to_string(c.rough_pose.method), c.rough_pose.ransac_threshold_px, c.extraction.features);
 }
 
 std::string grid_cache_file(const Config& c, const PersonVariant& v) {

@@ -4,13 +4,11 @@
 /// rejected, so a person's point that leaked once is new again next frame; a map point instead
 /// remembers how often it was screened out and is culled when it keeps being rejected.
 ///
-/// outlier_share() is the forgetting-weighted share of the point's screenings that rejected it:
-///   share = sum_k lambda^k r_k / sum_k lambda^k,   r_k = 1 if screened out k screenings ago,
-/// kept as two running sums (num <- lambda num + r, den <- lambda den + 1). It lies in [0, 1],
-/// is 0 for a point never screened, and is what MatchEvidence::outlier_history carries to the
-/// screen (residual_screen.hpp).
+/// outlier_share() is the forgetting-weighted share of the point's screenings that rejected it
+/// (frontend/outlier_share.hpp).
 
 #include "frontend/map/map_config.hpp"
+#include "frontend/outlier_share.hpp"
 
 namespace hbos::slam {
 
@@ -18,17 +16,14 @@ class ScreeningHistory {
  public:
   /// Records one screening of the point: `rejected` = screened out.
   void record(bool rejected, double forgetting) {
-    weighted_rejections_ = forgetting * weighted_rejections_ + (rejected ? 1.0 : 0.0);
-    weighted_screenings_ = forgetting * weighted_screenings_ + 1.0;
+    share_.record(rejected, forgetting);
     consecutive_rejections_ = rejected ? consecutive_rejections_ + 1 : 0;
     ++screenings_;
   }
 
   /// [0, 1] forgetting-weighted share of screenings that rejected the point; 0 when never
   /// screened.
-  [[nodiscard]] double outlier_share() const {
-    return weighted_screenings_ > 0.0 ? weighted_rejections_ / weighted_screenings_ : 0.0;
-  }
+  [[nodiscard]] double outlier_share() const { return share_.share(); }
   [[nodiscard]] int consecutive_rejections() const { return consecutive_rejections_; }
   [[nodiscard]] int screenings() const { return screenings_; }
 
@@ -45,8 +40,7 @@ class ScreeningHistory {
   }
 
  private:
-  double weighted_rejections_ = 0.0;
-  double weighted_screenings_ = 0.0;
+  OutlierShare share_;
   int consecutive_rejections_ = 0;
   int screenings_ = 0;
 };
