@@ -15,6 +15,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "csv_reader.hpp"
 #include "npy_reader.hpp"
@@ -134,6 +135,21 @@ Hbosd fit_streaming(const std::string& path, const CsvOptions& csv, const HbosPa
   return plan.model(*total);
 }
 
+/// The default-mode fit of data held in memory, written one feature at a time: each feature's
+/// histogram is fitted (by the code Hbos::fit runs for it) and appended to the model file, so
+/// only one histogram is held, not one per feature (a fitted Hbos of 1e7 features takes GBs).
+/// The file is the one save_model(Hbosd::fit(x, params)) writes.
+void fit_to_file(const Eigen::MatrixXd& x, const HbosParams& params, const std::string& path) {
+  ModelFileWriter<double> file(path, params, x.cols(), x.rows());
+  Histogram<double> histogram;
+  std::vector<double> scratch;
+  for (Eigen::Index j = 0; j < x.cols(); ++j) {
+    histogram.refit(x.col(j), params.spec(j), params.scoring, scratch, j);
+    file.add(histogram);
+  }
+  file.commit();
+}
+
 }  // namespace
 
 int fit_command(int argc, char** argv) {
@@ -198,7 +214,10 @@ int fit_command(int argc, char** argv) {
       if (o.mode == "pyod") {
         save_model(PyodHbosd::fit(x, pyod_params(o)), o.output);
       } else {
-        save_model(Hbosd::fit(x, *params), o.output);
+        // Hbos::fit's checks, in its order, before the output is created.
+        detail::require(x.rows() > 0, "cannot fit to an empty data set (0 rows)");
+        detail::require(x.cols() > 0, "cannot fit to data with no features (0 columns)");
+        fit_to_file(x, *params, o.output);
       }
     }
     std::fprintf(stderr, "hbos-score fit: %s model of %lld rows x %lld features written to %s\n",

@@ -7,9 +7,12 @@
 
 #include <array>
 #include <charconv>
+#include <cstdint>
 #include <cstdio>
+#include <filesystem>
 #include <stdexcept>
 #include <string>
+#include <system_error>
 
 #include "common/atomic_file.hpp"
 #include "csv_reader.hpp"
@@ -27,6 +30,36 @@ void append_number(std::string& out, double v) {
   std::array<char, 32> buffer{};
   const auto r = std::to_chars(buffer.data(), buffer.data() + buffer.size(), v);
   out.append(buffer.data(), r.ptr);
+}
+
+/// Whether to score `input` with the model read one feature at a time: a file that is short
+/// for its width (under 2 KiB per feature, as `fit` decides to read one whole), or a `.npy`
+/// file (read whole anyway). A fitted model holds a histogram per feature, about 2 KB each, so
+/// for such data the model would cost more memory than the values themselves.
+bool score_by_feature(const std::string& input, Eigen::Index n_features) {
+  if (input == "-") return false;
+  if (is_npy_path(input)) return true;
+  std::error_code error;
+  const auto bytes = std::filesystem::file_size(input, error);
+  if (error) return false;  // the block reader reports what is wrong with the file
+  constexpr std::uintmax_t kModelBytesPerFeature = 2048;
+  return bytes <= static_cast<std::uintmax_t>(n_features) * kModelBytesPerFeature;
+}
+
+/// The scores of the rows of `x`, read whole, by the model file read one feature at a time:
+/// each feature's contributions are added in feature order, as Hbos::score adds them, so the
+/// scores are load_hbos(path).score(x)'s bit for bit, with one histogram in memory at a time.
+Eigen::VectorXd score_by_feature(ModelFileReader<double>& model, const Eigen::MatrixXd& x) {
+  detail::require(x.cols() == model.n_features(), "the model was fitted on ", model.n_features(),
+                  " features but the data to score has ", x.cols(), " columns");
+  Eigen::VectorXd scores(x.rows());
+  for (Eigen::Index j = 0; j < x.cols(); ++j) {
+    const Histogram<double> histogram = model.next();
+    histogram.contributions_into(detail::ColumnView<double>{x.col(j).data(), x.rows(), 1},
+                                 scores.data(), j > 0, j);
+  }
+  model.finish();
+  return scores;
 }
 
 }  // namespace
@@ -84,6 +117,15 @@ int score_command(int argc, char** argv) {
         }
         write_if_full();
       });
+    } else if (ModelFileReader<double> reader(model_path);
+               score_by_feature(input, reader.n_features())) {
+      scores = score_by_feature(reader, read_data_matrix(input, csv));
+      text = "score\n";
+      for (Eigen::Index i = 0; i < scores.size(); ++i) {
+        append_number(text, scores[i]);
+        text += '\n';
+        write_if_full();
+      }
     } else {
       const auto model = load_hbos<double>(model_path);
       text = "score\n";

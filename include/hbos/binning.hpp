@@ -464,6 +464,9 @@ struct EdgeLayout {
   Scalar period = 0;          ///< periodic only
   Scalar scale = 1;           ///< uniform bins: power of two applied to values before binning
   Scalar base = 0;            ///< lo * scale
+  /// Uniform bins: the fine bin width the edges were placed with (edges[j] = lo + j * fine, or
+  /// (base + j * fine) / scale), which model files store instead of the edges; 0 otherwise.
+  Scalar fine = 0;
 };
 
 /// The bin-count rules' reusable buffers (Birgé–Rozenblac's bucketed values and cells) and the
@@ -531,6 +534,23 @@ Eigen::Index rule_bins(const ColumnView<Scalar>& x, const Binning& binning, Scal
                                   rule_scratch.values, rule_scratch.cells, s);
   }
   return binning.bins;
+}
+
+/// The k + 1 edges of k uniform bins of width `fine` from lo (in scaled units when scale != 1),
+/// the last one hi: how place_uniform_edges places them, and how a model file that stores only
+/// `fine` rebuilds them, bit for bit.
+template <class Scalar>
+void fill_uniform_edges(Scalar lo, Scalar hi, Scalar scale, Scalar base, Scalar fine,
+                        Eigen::Index k, std::vector<Scalar>& edges) {
+  edges.resize(static_cast<std::size_t>(k + 1));
+  if (scale == Scalar(1)) {
+    for (Eigen::Index j = 0; j < k; ++j)
+      edges[static_cast<std::size_t>(j)] = lo + static_cast<Scalar>(j) * fine;
+  } else {
+    for (Eigen::Index j = 0; j < k; ++j)
+      edges[static_cast<std::size_t>(j)] = (base + static_cast<Scalar>(j) * fine) / scale;
+  }
+  edges.back() = hi;
 }
 
 /// FixedWidth bins over the column range [lo, hi]: sets layout.lo, layout.hi and returns the
@@ -633,16 +653,8 @@ void place_uniform_edges(const ColumnView<Scalar>& x, const FeatureSpec& spec, E
   k *= m;
   layout.base = layout.lo * layout.scale;
   layout.inv_width = fine > Scalar(0) ? Scalar(1) / fine : Scalar(0);
-  layout.edges.resize(static_cast<std::size_t>(k + 1));
-  if (layout.scale == Scalar(1)) {
-    for (Eigen::Index j = 0; j < k; ++j)
-      layout.edges[static_cast<std::size_t>(j)] = layout.lo + static_cast<Scalar>(j) * fine;
-  } else {
-    for (Eigen::Index j = 0; j < k; ++j)
-      layout.edges[static_cast<std::size_t>(j)] =
-          (layout.base + static_cast<Scalar>(j) * fine) / layout.scale;
-  }
-  layout.edges.back() = layout.hi;
+  layout.fine = fine;
+  fill_uniform_edges(layout.lo, layout.hi, layout.scale, layout.base, fine, k, layout.edges);
 }
 
 /// The point midway between a < b, without the overflow of b - a (a = -1e308, b = 1e308).
@@ -665,6 +677,7 @@ void place_equal_frequency_edges(const Scalar* sorted, Eigen::Index n, Eigen::In
   layout.hi = sorted[n - 1];
   layout.scale = 1;
   layout.base = layout.lo;
+  layout.fine = 0;
   layout.edges.clear();
   layout.edges.push_back(layout.lo);
   Eigen::Index previous = 0;

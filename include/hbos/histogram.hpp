@@ -154,6 +154,7 @@ class Histogram {
     p.tail = tail_;
     p.periodic = periodic_;
     p.uniform = uniform_;
+    p.fine = layout_.fine;
     return p;
   }
 
@@ -177,6 +178,7 @@ class Histogram {
     h.layout_.period = parts.period;
     h.layout_.scale = parts.scale;
     h.layout_.base = parts.base;
+    h.layout_.fine = parts.fine;
     h.counts_ = std::move(parts.counts);
     h.shifts_ = parts.shifts;
     h.tail_ = parts.tail;

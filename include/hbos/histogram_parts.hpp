@@ -41,6 +41,10 @@ struct HistogramParts {
   Tail tail = Tail::Both;   ///< the tail rule
   bool periodic = false;    ///< values wrap modulo `period`
   bool uniform = true;      ///< equal-width bins (looked up by arithmetic, not by search)
+  /// [scaled feature units] uniform bins: the fine width the edges were placed with
+  /// (detail::fill_uniform_edges), so a model file can store it instead of the edges; 0 when
+  /// unknown (parts read from a version 1 file) or not uniform. Not used by scoring.
+  Scalar fine = 0;
 };
 
 namespace detail {
@@ -58,6 +62,8 @@ void validate_parts(const HistogramParts<Scalar>& p, const std::string& where) {
   require(std::isfinite(p.inv_width) && p.inv_width >= Scalar(0), where,
           ": inv_width must be finite and >= 0, got ", p.inv_width);
   require(p.shifts >= 1, where, ": shifts must be >= 1, got ", p.shifts);
+  require(std::isfinite(p.fine) && p.fine >= Scalar(0) && (p.uniform || p.fine == Scalar(0)), where,
+          ": fine must be finite, >= 0 and 0 for irregular bins, got ", p.fine);
   require(std::isfinite(p.scale) && p.scale > Scalar(0) && std::isfinite(p.base), where,
           ": scale must be finite and > 0 and base finite, got ", p.scale, " and ", p.base);
   for (std::size_t i = 0; i < p.edges.size(); ++i) {

@@ -211,6 +211,7 @@ class ShardedFit {
       parts.period = spec.periodic ? layout.period : Scalar(0);
       parts.scale = layout.scale;
       parts.base = layout.base;
+      parts.fine = layout.fine;
       parts.shifts = spec.binning.shifts;
       parts.tail = spec.tail;
       parts.periodic = spec.periodic;

@@ -71,6 +71,25 @@ inline void validate(const HbosParams& params, Eigen::Index n_features) {
   for (Eigen::Index j = 0; j < n_features; ++j) validate(params.spec(j), j);
 }
 
+/// What a model requires of feature j's parts: counts adding up to `n_samples`,
+/// flags agreeing with the feature's spec. \throws InvalidArgument naming the feature.
+template <class Scalar>
+void check_against_spec(const HistogramParts<Scalar>& p, const FeatureSpec& spec,
+                        Eigen::Index n_samples, Eigen::Index j) {
+  const bool equal_frequency = spec.binning.method == BinningMethod::EqualFrequency;
+  Eigen::Index counted = 0;
+  for (const Eigen::Index c : p.counts) counted += c;
+  require(counted == n_samples, "feature ", j, ": its histogram counts ", counted,
+          " samples, the model ", n_samples);
+  require(p.periodic == spec.periodic && p.tail == spec.tail, "feature ", j,
+          ": its histogram's periodic/tail flags disagree with its spec");
+  require(p.uniform == (spec.periodic || !equal_frequency), "feature ", j,
+          ": its histogram's bins are ", p.uniform ? "uniform" : "irregular",
+          " but its spec's binning is not");
+  require(p.shifts == (equal_frequency ? 1 : spec.binning.shifts), "feature ", j,
+          ": its histogram has ", p.shifts, " shifts, its spec ", spec.binning.shifts);
+}
+
 /// Fits `histograms` (resized to the column count) to `x`, reusing their storage. Non-finite
 /// values are caught by the fitting pass itself (no separate scan).
 template <class Scalar, class Derived>
@@ -477,23 +496,9 @@ class Hbos {
     const auto d = static_cast<Index>(histograms.size());
     detail::require(d > 0, "a model needs at least one feature histogram");
     detail::validate(params, d);
-    for (Index j = 0; j < d; ++j) {
-      const Histogram<Scalar>& h = histograms[static_cast<std::size_t>(j)];
-      const FeatureSpec& spec = params.spec(j);
-      const bool equal_frequency = spec.binning.method == BinningMethod::EqualFrequency;
-      const HistogramParts<Scalar> p = h.parts();
-      Index counted = 0;
-      for (const Index c : p.counts) counted += c;
-      detail::require(counted == n_samples, "feature ", j, ": its histogram counts ", counted,
-                      " samples, the model ", n_samples);
-      detail::require(p.periodic == spec.periodic && p.tail == spec.tail, "feature ", j,
-                      ": its histogram's periodic/tail flags disagree with its spec");
-      detail::require(p.uniform == (spec.periodic || !equal_frequency), "feature ", j,
-                      ": its histogram's bins are ", p.uniform ? "uniform" : "irregular",
-                      " but its spec's binning is not");
-      detail::require(p.shifts == (equal_frequency ? 1 : spec.binning.shifts), "feature ", j,
-                      ": its histogram has ", p.shifts, " shifts, its spec ", spec.binning.shifts);
-    }
+    for (Index j = 0; j < d; ++j)
+      detail::check_against_spec(histograms[static_cast<std::size_t>(j)].parts(), params.spec(j),
+                                 n_samples, j);
     Hbos model;
     model.histograms_ = std::move(histograms);
     model.params_ = params;

@@ -1,6 +1,7 @@
 # `hbos-score fit` / `hbos-score score` end to end (examples/hbos_score/{fit,score}_command.*):
 # models written and applied, CSV and .npy inputs giving identical scores, the PyOD-mode
 # `score` reproducing the one-shot scorer byte for byte, and bad input refused with exit 2.
+# Model files of format versions 1 and 2 are read.
 # Included by tests/cli/CMakeLists.txt (hbos-score is built).
 set(_data "${CMAKE_CURRENT_SOURCE_DIR}/../data/cli_model")
 set(_work "${CMAKE_CURRENT_BINARY_DIR}/model_commands")
@@ -35,10 +36,17 @@ foreach(input wbc39.csv wbc39_f8.npy wbc39_fortran_f8.npy wbc39_f4.npy wbc39_f4_
                        FIXTURES_SETUP scores)
 endforeach()
 
+# A version 1 model file (written by the release before version 2, tests/data/cli_model) is
+# still read, and scores as the version 2 file fitted now.
+hbos_model_command_test(score_v1_model 0 "" ${_exe} score ${_data}/wbc39_v1.hbos
+                        ${_data}/wbc39.csv -o ${_work}/v1_wbc39.csv.csv)
+set_tests_properties(cli:model:score_v1_model PROPERTIES FIXTURES_SETUP scores)
+
 # Identical bytes: C order, Fortran order and CSV; float32 .npy and its exact decimals; the
 # PyOD-mode model's scores and labels of its training rows and the one-shot scorer's output.
 set(_same
     "default_wbc39.csv.csv default_wbc39_f8.npy.csv"
+    "default_wbc39.csv.csv v1_wbc39.csv.csv"
     "default_wbc39.csv.csv default_wbc39_fortran_f8.npy.csv"
     "default_wbc39_f4.npy.csv default_wbc39_f4_as_f8.csv.csv"
     "pyod_wbc39.csv.csv pyod_wbc39_fortran_f8.npy.csv"
@@ -62,6 +70,9 @@ hbos_model_command_test(int_npy 2 "int64.npy: dtype '<i8' is not supported"
                         ${_exe} fit ${_data}/int64.npy -o ${_work}/never.hbos)
 hbos_model_command_test(damaged_model 2 "damaged.hbos', line 25 \\(hist.lo\\): '1.5x' is not a number"
                         ${_exe} score ${_data}/damaged.hbos ${_data}/wbc39.csv)
+hbos_model_command_test(damaged_model_v2 2
+                        "damaged_v2.hbos', line 20 \\(f.lo\\): '1.5x' is not a number"
+                        ${_exe} score ${_data}/damaged_v2.hbos ${_data}/wbc39.csv)
 hbos_model_command_test(missing_model 2 "cannot open model file"
                         ${_exe} score ${_work}/missing.hbos ${_data}/wbc39.csv)
 hbos_model_command_test(wrong_columns 2 "fitted on 30 features but the data to score has 31"

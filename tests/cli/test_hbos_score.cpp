@@ -424,3 +424,76 @@ TEST_CASE("hbos-score score opens its output before reading and leaves it untouc
   CHECK(r.exit_code == 1);
   CHECK_THAT(r.err, !Catch::Contains("oops"));
 }
+
+TEST_CASE("hbos-score fit / score on a wide file: one feature at a time, bit for bit the library",
+          "[cli][hbos_score][streaming]") {
+  // 3 rows x 3000 columns (a file short for its width): `fit` writes each feature as it is
+  // fitted, `score` reads the model one feature at a time. The model is Hbos::fit's, the scores
+  // its scores, and the same as `score` from standard input (rows in blocks, the model loaded
+  // whole), in every binning.
+  const fs::path dir = work_dir();
+  const fs::path csv = dir / "wide.csv";
+  const Eigen::Index d = 3000;
+  {
+    std::ofstream out(csv);
+    for (int i = 0; i < 3; ++i) {
+      for (Eigen::Index j = 0; j < d; ++j)
+        out << (j > 0 ? "," : "") << (j % 11 == 0 ? 4.25 : std::sin(double(i * d + j)) * 3.0);
+      out << '\n';
+    }
+  }
+  hbos::cli::CsvOptions options;
+  options.header = hbos::cli::HeaderMode::Absent;
+  const hbos::cli::CsvTable table = hbos::cli::read_csv(csv.string(), options);
+  REQUIRE(table.features.cols() == d);
+  struct Case {
+    std::vector<std::string> args;
+    hbos::HbosParams params;
+  };
+  std::vector<Case> cases(6);
+  cases[1].args = {"--bins", "10", "--shifts", "1"};
+  cases[1].params.feature.binning.bins = 10;
+  cases[1].params.feature.binning.shifts = 1;
+  cases[2].args = {"--binning", "equal-frequency", "--bins", "sqrt"};
+  cases[2].params.feature.binning.method = hbos::BinningMethod::EqualFrequency;
+  cases[2].params.feature.binning.rule = hbos::BinCountRule::Sqrt;
+  cases[3].args = {"--binning", "fixed-width", "--width", "0.7", "--origin", "0.1"};
+  cases[3].params.feature.binning.method = hbos::BinningMethod::FixedWidth;
+  cases[3].params.feature.binning.width = 0.7;
+  cases[3].params.feature.binning.origin = 0.1;
+  cases[4].args = {"--tail", "upper", "--bins", "scott"};
+  cases[4].params.feature.tail = hbos::Tail::Upper;
+  cases[4].params.feature.binning.rule = hbos::BinCountRule::Scott;
+  cases[5].args = {"--tail", "lower", "--bins", "birge", "--shifts", "2"};
+  cases[5].params.feature.tail = hbos::Tail::Lower;
+  cases[5].params.feature.binning.rule = hbos::BinCountRule::BirgeRozenblac;
+  cases[5].params.feature.binning.shifts = 2;
+  for (std::size_t c = 0; c < cases.size(); ++c) {
+    INFO("case " << c);
+    const std::string model = (dir / ("wide_" + std::to_string(c) + ".hbos")).string();
+    std::vector<std::string> args = {"fit", csv.string(), "--no-header", "-o", model};
+    args.insert(args.end(), cases[c].args.begin(), cases[c].args.end());
+    Run r = hbos_score("wide_fit", args);
+    INFO(r.err);
+    REQUIRE(r.exit_code == 0);
+    const hbos::Hbosd direct = hbos::Hbosd::fit(table.features, cases[c].params);
+    CHECK(slurp(model) == hbos::to_model_text(direct));
+    const std::string by_feature = (dir / "wide_scores_file.csv").string();
+    r = hbos_score("wide_score", {"score", model, csv.string(), "--no-header", "-o", by_feature});
+    REQUIRE(r.exit_code == 0);
+    const std::string by_rows = (dir / "wide_scores_stdin.csv").string();
+    r = hbos_score("wide_score_stdin", {"score", model, "-", "--no-header", "-o", by_rows},
+                   csv.string());
+    REQUIRE(r.exit_code == 0);
+    CHECK(slurp(by_feature) == slurp(by_rows));
+    const hbos::cli::CsvTable got = read_output(slurp(by_feature));
+    REQUIRE(got.rows() == 3);
+    CHECK(got.features.col(0) == direct.score(table.features));
+  }
+  // A model of another width is refused, naming both counts.
+  { std::ofstream(dir / "wide_other.csv") << "1,2\n3,4\n"; }
+  const Run r = hbos_score("wide_mismatch", {"score", (dir / "wide_0.hbos").string(),
+                                             (dir / "wide_other.csv").string(), "--no-header"});
+  CHECK(r.exit_code == 2);
+  CHECK_THAT(r.err, Catch::Contains("fitted on 3000 features"));
+}

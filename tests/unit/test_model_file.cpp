@@ -7,13 +7,16 @@
 
 #include "../support/mixed_features.hpp"
 
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <random>
+#include <sstream>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -106,6 +109,50 @@ void check_round_trip(const Matrix<Scalar>& x, const hbos::HbosParams& params) {
   }
   // Writing the loaded model gives the same text: nothing is lost or re-rounded.
   CHECK(hbos::to_model_text(loaded) == text);
+  // Version 1 (the layout older releases read) round-trips too, and loads to the same scores.
+  const std::string v1 = hbos::to_model_text(model, 1);
+  const auto loaded_v1 = hbos::hbos_from_model_text<Scalar>(v1);
+  CHECK(same_bits(model.score(q), loaded_v1.score(q)));
+  CHECK(hbos::to_model_text(loaded_v1, 1) == v1);
+  // Re-saved as version 2, a version 1 model lists its edges (the width they were placed with
+  // is not in version 1) and still scores the same.
+  const auto again = hbos::hbos_from_model_text<Scalar>(hbos::to_model_text(loaded_v1));
+  CHECK(same_bits(model.score(q), again.score(q)));
+}
+
+/// The feature-at-a-time writer writes save_model's file, and the reader gives back the
+/// histograms load_hbos holds: scoring feature by feature gives the same bits.
+template <class Scalar>
+void check_streamed(const Matrix<Scalar>& x, const hbos::HbosParams& params,
+                    const std::string& path) {
+  const auto model = hbos::Hbos<Scalar>::fit(x, params);
+  {
+    hbos::ModelFileWriter<Scalar> writer(path, params, x.cols(), x.rows());
+    for (Eigen::Index j = 0; j < x.cols(); ++j) writer.add(model.histogram(j));
+    writer.commit();
+  }
+  std::ifstream in(path, std::ios::binary);
+  const std::string written((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  CHECK(written == hbos::to_model_text(model));
+  const Matrix<Scalar> q = make_queries(x);
+  for (const int version : {2, 1}) {
+    if (version == 1) hbos::save_model(model, path, 1);
+    hbos::ModelFileReader<Scalar> reader(path);
+    CHECK(reader.version() == version);
+    CHECK(reader.n_features() == x.cols());
+    CHECK(reader.n_samples() == x.rows());
+    Eigen::Matrix<Scalar, Eigen::Dynamic, 1> scores(q.rows());
+    for (Eigen::Index j = 0; j < q.cols(); ++j) {
+      const hbos::Histogram<Scalar> h = reader.next();
+      CHECK(h.bin_contributions() == model.histogram(j).bin_contributions());
+      const Eigen::Matrix<Scalar, Eigen::Dynamic, 1> column = q.col(j);
+      h.contributions_into(hbos::detail::ColumnView<Scalar>{column.data(), column.size(), 1},
+                           scores.data(), j > 0, j);
+    }
+    CHECK_NOTHROW(reader.finish());
+    CHECK(same_bits(scores, model.score(q)));
+  }
+  std::filesystem::remove(path);
 }
 
 std::string temp_path(const std::string& name) {
@@ -114,12 +161,13 @@ std::string temp_path(const std::string& name) {
   return (dir / name).string();
 }
 
-/// The text of a small fitted model, to damage.
-std::string sample_text() {
+/// The text of a small fitted model, to damage: version 1 unless `version` says 2.
+std::string sample_text(int version = 1) {
   hbos::HbosParams p;
   p.feature.binning.shifts = 1;
   p.feature.binning.bins = 3;
-  return hbos::to_model_text(hbos::Hbosd::fit(mixed_features<double>(5, 50).leftCols(2), p));
+  return hbos::to_model_text(hbos::Hbosd::fit(mixed_features<double>(5, 50).leftCols(2), p),
+                             version);
 }
 
 /// `text` with the line starting with `key` replaced by `replacement`.
@@ -154,6 +202,8 @@ TEST_CASE("a loaded model scores bit for bit like the saved one, every mode", "[
         check_round_trip(mixed_features<double>(seed, 300 + 71 * seed), params);
         check_round_trip(mixed_features<float>(seed, 300 + 71 * seed), params);
       }
+      check_streamed(mixed_features<double>(4, 250), params, temp_path("streamed.hbos"));
+      check_streamed(mixed_features<float>(4, 250), params, temp_path("streamed.hbos"));
     }
   }
 }
@@ -217,9 +267,9 @@ TEST_CASE("damaged model files are refused naming the line and the field", "[mod
   check_refused("not a model\n", {"line 1", "hbos-model-file"});
   check_refused(replace_line("x\n" + text.substr(text.find('\n') + 1), "kind", "kind hbos"),
                 {"line 1"});
-  std::string v2 = text;
-  v2.replace(0, v2.find('\n'), "hbos-model-file 2");
-  check_refused(v2, {"line 1", "unsupported format version 2"});
+  std::string v3 = text;
+  v3.replace(0, v3.find('\n'), "hbos-model-file 3");
+  check_refused(v3, {"line 1", "unsupported format version 3"});
   check_refused(replace_line(text, "kind", "kind pyod"), {"load_pyod_hbos"});
   check_refused(replace_line(text, "scalar", "scalar half"), {"line 3", "'half'"});
   check_refused(text.substr(0, text.size() / 2), {"m.txt"});
@@ -246,6 +296,113 @@ TEST_CASE("damaged model files are refused naming the line and the field", "[mod
   check_refused(replace_line(text, "scoring.empty_bin_count", "scoring.empty_bin_count 2"),
                 {"line 7", "empty_bin_count"});
   check_refused(replace_line(text, "feature", "feature 1"), {"expected feature 0"});
+}
+
+TEST_CASE("version 2 stores a feature on one line, uniform edges as their width", "[model_file]") {
+  const Eigen::MatrixXd x = mixed_features<double>(6, 400);
+  const std::string v2 = hbos::to_model_text(hbos::Hbosd::fit(x));
+  const std::string v1 = hbos::to_model_text(hbos::Hbosd::fit(x), 1);
+  CHECK(v2.rfind("hbos-model-file 2\n", 0) == 0);
+  // Every feature of the default spec is uniform: one `f ... u <width> ...` line each.
+  std::size_t lines = 0, uniform = 0;
+  for (std::size_t at = v2.find("\nf "); at != std::string::npos; at = v2.find("\nf ", at + 1)) {
+    ++lines;
+    const std::string line = v2.substr(at + 1, v2.find('\n', at + 1) - at - 1);
+    if (line.find(" u ") != std::string::npos) ++uniform;
+  }
+  CHECK(lines == static_cast<std::size_t>(x.cols()));
+  CHECK(uniform == lines);
+  CHECK(v2.size() * 2 < v1.size());
+  // Irregular bins list their edges.
+  hbos::HbosParams ef;
+  ef.feature.binning.method = hbos::BinningMethod::EqualFrequency;
+  const std::string listed = hbos::to_model_text(hbos::Hbosd::fit(x, ef));
+  CHECK(listed.find(" e ") != std::string::npos);
+  CHECK(listed.find(" u ") == std::string::npos);
+}
+
+TEST_CASE("damaged version 2 model files are refused naming the line and the field",
+          "[model_file]") {
+  const std::string text = sample_text(2);
+  REQUIRE_NOTHROW(hbos::hbos_from_model_text<double>(text));
+  const std::size_t f = text.find("\nf ") + 1;
+  const std::string line = text.substr(f, text.find('\n', f) - f);
+  // The first feature line's tokens, to damage one at a time.
+  std::vector<std::string> t;
+  for (std::size_t i = 0; i < line.size();) {
+    const std::size_t end = std::min(line.find(' ', i), line.size());
+    t.push_back(line.substr(i, end - i));
+    i = end + 1;
+  }
+  REQUIRE(t.size() == 13);  // f, 6 numbers, 3 bins, u, the width, 3 counts
+  REQUIRE(t[8] == "u");
+  auto with = [&](std::size_t i, const std::string& token) {
+    std::vector<std::string> u = t;
+    u[i] = token;
+    std::string joined;
+    for (const auto& s : u) joined += (joined.empty() ? "" : " ") + s;
+    return text.substr(0, f) + joined + text.substr(f + line.size());
+  };
+  const std::string before = text.substr(0, f);
+  const std::string feature_line =
+      "line " + std::to_string(std::count(before.begin(), before.end(), '\n') + 1);
+  // Truncated: no final `end`, cut in the middle of a line, missing the last feature.
+  check_refused(text.substr(0, text.rfind("end\n")), {"m.txt", "'end'", "truncated"});
+  check_refused(text.substr(0, f + line.size() / 2), {"m.txt"});
+  check_refused(text.substr(0, text.rfind("\nf ") + 1) + "end\n",
+                {"expected a line starting with 'f'"});
+  check_refused(text + "f 1\n", {"unexpected content"});
+  check_refused(with(1, "nan"), {feature_line, "(f.lo)", "not finite"});
+  check_refused(with(2, "inf"), {"(f.hi)", "not finite"});
+  check_refused(with(9, "nan"), {"(f.fine)", "not finite"});
+  check_refused(with(9, "0.5"), {"(f.fine)", "does not match inv_width"});
+  check_refused(with(9, "0"), {"(f.fine)", "does not match"});
+  check_refused(with(7, "4"), {feature_line, "expected 13 values for 4 bins, got 12"});
+  check_refused(with(7, "0"), {"(f.bins)", "outside [1"});
+  check_refused(with(7, "-3"), {"(f.bins)", "outside [1"});
+  check_refused(with(8, "x"), {"edge form 'x'"});
+  check_refused(with(10, "-1"), {"feature 0", "negative"});
+  check_refused(with(10, "1000"), {"feature 0", "counts 1", "the model 50"});
+  check_refused(with(10, "1.5"), {"(f.counts)", "not a whole number"});
+  check_refused(with(3, "1e30"), {"(f.fine)", "does not match inv_width 1e+30"});
+  check_refused(with(4, "1"), {"feature 0", "period"});
+  // Listed edges: the form of irregular bins, checked as version 1's edges are.
+  std::vector<std::string> e = {t[0], t[1], t[2], t[3], t[4], t[5], t[6], t[7], "e"};
+  auto listed = [&](const std::vector<std::string>& edges) {
+    std::string joined;
+    for (const auto& s : e) joined += (joined.empty() ? "" : " ") + s;
+    for (const auto& s : edges) joined += " " + s;
+    for (std::size_t i = 10; i < t.size(); ++i) joined += " " + t[i];
+    return text.substr(0, f) + joined + text.substr(f + line.size());
+  };
+  const double lo = std::stod(t[1]), hi = std::stod(t[2]);
+  const double w = (hi - lo) / 3;
+  auto num = [](double v) {
+    std::ostringstream o;
+    o.precision(17);
+    o << v;
+    return o.str();
+  };
+  REQUIRE_NOTHROW(
+      hbos::hbos_from_model_text<double>(listed({t[1], num(lo + w), num(lo + 2 * w), t[2]})));
+  check_refused(listed({t[1], "nan", num(lo + 2 * w), t[2]}), {"(f.edges)", "not finite"});
+  check_refused(listed({t[1], num(lo + 2 * w), num(lo + w), t[2]}),
+                {"feature 0 (from " + feature_line + ")", "not ascending"});
+  check_refused(listed({t[1], num(lo + w), t[2]}), {"expected 15 values for 3 bins, got 14"});
+  check_refused(listed({num(lo - 1), num(lo + w), num(lo + 2 * w), t[2]}),
+                {"feature 0", "edges run from"});
+  // Per-feature specs: one `spec` line before each feature line.
+  hbos::HbosParams p;
+  p.features.resize(2);
+  p.features[1].binning.method = hbos::BinningMethod::EqualFrequency;
+  const std::string per =
+      hbos::to_model_text(hbos::Hbosd::fit(mixed_features<double>(5, 50).leftCols(2), p));
+  REQUIRE_NOTHROW(hbos::hbos_from_model_text<double>(per));
+  check_refused(replace_line(per, "spec", "spec equal_width fixed 5"), {"(spec)", "expected 11"});
+  std::string swapped = per;
+  const std::size_t second = swapped.find("\nspec ", swapped.find("\nspec ") + 1);
+  swapped.replace(swapped.find("equal_frequency", second), 15, "equal_width");
+  check_refused(swapped, {"m.txt"});
 }
 
 TEST_CASE("Hbos::from_histograms refuses histograms that disagree with the spec", "[model_file]") {

@@ -15,6 +15,7 @@
 #include <exception>
 #include <filesystem>
 #include <fstream>
+#include <istream>
 #include <iterator>
 #include <limits>
 #include <sstream>
@@ -81,7 +82,21 @@ class TextWriter {
     text_.push_back('\n');
   }
 
+  /// A line written by the caller: `line` must not hold a newline.
+  void raw_line(std::string_view line) {
+    text_.append(line);
+    text_.push_back('\n');
+  }
+
+  /// Starts a line with `key` and returns the text for the caller to append the rest of the
+  /// line to, ending it with '\n' (long lines built without a temporary).
+  std::string& begin_line(std::string_view key) {
+    text_.append(key);
+    return text_;
+  }
+
   [[nodiscard]] const std::string& text() const { return text_; }
+  [[nodiscard]] std::string& text() { return text_; }
 
  private:
   template <class T>
@@ -97,18 +112,15 @@ class TextWriter {
 };
 
 /// Reads a model file line by line, strictly: each call names the key the next line must have.
-/// Every error is an InvalidArgument "<source>, line <n> (<key>): <what>".
+/// Every error is an InvalidArgument "<source>, line <n> (<key>): <what>". Lines are taken one
+/// at a time, from text in memory or from a stream (a model file larger than memory allows is
+/// read in one pass); the tokens a call returns stay valid until the next call.
 class TextReader {
  public:
-  TextReader(std::string_view text, std::string source) : source_(std::move(source)) {
-    std::size_t start = 0;
-    while (start < text.size()) {
-      std::size_t end = text.find('\n', start);
-      if (end == std::string_view::npos) end = text.size();
-      lines_.push_back(text.substr(start, end - start));
-      start = end + 1;
-    }
-  }
+  TextReader(std::string_view text, std::string source) : source_(std::move(source)), text_(text) {}
+  /// Reads from `stream`, which must outlive the reader.
+  TextReader(std::istream& stream, std::string source)
+      : source_(std::move(source)), stream_(&stream) {}
 
   /// Line number (1-based) of the line read last.
   [[nodiscard]] std::size_t line_number() const { return next_; }
@@ -123,10 +135,10 @@ class TextReader {
   /// unless count is `any`).
   static constexpr std::size_t any = std::numeric_limits<std::size_t>::max();
   std::vector<std::string_view> expect(std::string_view key, std::size_t count = any) {
-    if (next_ >= lines_.size())
+    std::string_view line;
+    if (!next_line(line))
       throw InvalidArgument(concat(source_, ": the file ends after line ", next_, " where '", key,
                                    "' was expected (truncated?)"));
-    const std::string_view line = lines_[next_++];
     std::vector<std::string_view> tokens;
     std::size_t i = 0;
     while (i < line.size()) {
@@ -146,10 +158,10 @@ class TextReader {
   /// A line holding one value and nothing else (see TextWriter::bare); `field` names it in errors.
   template <class T>
   T bare(std::string_view field) {
-    if (next_ >= lines_.size())
+    std::string_view line;
+    if (!next_line(line))
       throw InvalidArgument(concat(source_, ": the file ends after line ", next_,
                                    " where a value of '", field, "' was expected (truncated?)"));
-    std::string_view line = lines_[next_++];
     while (!line.empty() && is_space(line.front())) line.remove_prefix(1);
     while (!line.empty() && is_space(line.back())) line.remove_suffix(1);
     return parse<T>(field, line);
@@ -191,13 +203,11 @@ class TextReader {
 
   /// Only blank lines may follow.
   void expect_end() {
-    for (; next_ < lines_.size(); ++next_) {
-      for (const char c : lines_[next_])
-        if (!is_space(c)) {
-          ++next_;
-          fail("end of file",
-               concat("unexpected content after the model: '", shorten(lines_[next_ - 1]), "'"));
-        }
+    std::string_view line;
+    while (next_line(line)) {
+      for (const char c : line)
+        if (!is_space(c))
+          fail("end of file", concat("unexpected content after the model: '", shorten(line), "'"));
     }
   }
 
@@ -235,9 +245,32 @@ class TextReader {
     return s.size() <= 60 ? std::string(s) : std::string(s.substr(0, 57)) + "...";
   }
 
+  /// The next line without its '\n' (a last line without one counts), or false at the end.
+  bool next_line(std::string_view& line) {
+    if (stream_ != nullptr) {
+      if (!std::getline(*stream_, current_)) {
+        if (stream_->bad())
+          throw InvalidArgument(concat(source_, ": read error after line ", next_));
+        return false;
+      }
+      line = current_;
+    } else {
+      if (position_ >= text_.size()) return false;
+      std::size_t end = text_.find('\n', position_);
+      if (end == std::string_view::npos) end = text_.size();
+      line = text_.substr(position_, end - position_);
+      position_ = end + 1;
+    }
+    ++next_;
+    return true;
+  }
+
   std::string source_;
-  std::vector<std::string_view> lines_;
-  std::size_t next_ = 0;
+  std::string_view text_;           // the text, when reading from memory
+  std::size_t position_ = 0;        // where its next line starts
+  std::istream* stream_ = nullptr;  // the stream, when reading from one
+  std::string current_;             // the stream's current line
+  std::size_t next_ = 0;            // lines read so far
 };
 
 /// The whole content of the file at `path`. \throws InvalidArgument naming it if unreadable.
@@ -259,43 +292,85 @@ inline std::string read_text_head(const std::string& path, int max_lines) {
   return head;
 }
 
-/// Replaces `path` by `content` atomically: written to a new temporary file in the same
-/// directory (opened exclusively), then renamed over `path`; on any failure the temporary file
-/// is removed and `path` is left as it was. No fsync (a crash of the process, not of the
-/// machine, is what this protects against).
+/// Replaces `path` atomically by what is written to it: the content goes to a new temporary
+/// file in the same directory (opened exclusively), renamed over `path` by commit(); on any
+/// failure, or when destroyed without commit(), the temporary file is removed and `path` is left
+/// as it was. No fsync (a crash of the process, not of the machine, is what this protects
+/// against). Lets a large model file be written piece by piece instead of built in memory.
+class AtomicFileWriter {
+ public:
+  /// \throws InvalidArgument naming the path and the system's reason.
+  explicit AtomicFileWriter(std::string path) : path_(std::move(path)) {
+    namespace fs = std::filesystem;
+    require(!path_.empty(), "cannot write a model file to an empty path");
+    std::error_code ec;
+    require(!fs::is_directory(fs::path(path_), ec), "cannot write model file '", path_,
+            "': it is a directory");
+    const auto stamp = static_cast<unsigned long long>(
+        std::chrono::steady_clock::now().time_since_epoch().count());
+    for (unsigned attempt = 0; attempt < 100 && file_ == nullptr; ++attempt) {
+      temp_ = concat(path_, ".tmp", stamp % 1000000007ULL, "-", attempt);
+      file_ = std::fopen(temp_.c_str(), "wbx");  // x: fail if it exists (never share a temp file)
+      if (file_ == nullptr && errno != EEXIST) break;
+    }
+    require(file_ != nullptr, "cannot create a temporary file next to model file '", path_,
+            "': ", std::strerror(errno));
+  }
+  AtomicFileWriter(const AtomicFileWriter&) = delete;
+  AtomicFileWriter& operator=(const AtomicFileWriter&) = delete;
+  ~AtomicFileWriter() { discard(); }
+
+  /// Appends `content`. \throws InvalidArgument naming the path when it cannot be written.
+  void write(std::string_view content) {
+    require(file_ != nullptr, "model file '", path_, "' was already committed");
+    if (content.empty() || std::fwrite(content.data(), 1, content.size(), file_) == content.size())
+      return;
+    const int error = errno;
+    discard();
+    throw InvalidArgument(concat("cannot write model file '", path_, "': ", std::strerror(error)));
+  }
+
+  /// Closes the temporary file and renames it over the path.
+  /// \throws InvalidArgument naming the path when that fails (the path is then unchanged).
+  void commit() {
+    require(file_ != nullptr, "model file '", path_, "' was already committed");
+    const bool closed = std::fclose(file_) == 0;
+    const int close_errno = errno;
+    file_ = nullptr;
+    std::error_code ec;
+    if (!closed) {
+      std::filesystem::remove(temp_, ec);
+      throw InvalidArgument(
+          concat("cannot write model file '", path_, "': ", std::strerror(close_errno)));
+    }
+    std::filesystem::rename(temp_, std::filesystem::path(path_), ec);
+    if (ec) {
+      std::error_code ignored;
+      std::filesystem::remove(temp_, ignored);
+      throw InvalidArgument(concat("cannot write model file '", path_, "': ", ec.message()));
+    }
+  }
+
+ private:
+  void discard() noexcept {
+    if (file_ == nullptr) return;
+    std::fclose(file_);
+    file_ = nullptr;
+    std::error_code ignored;
+    std::filesystem::remove(temp_, ignored);
+  }
+
+  std::string path_;
+  std::string temp_;
+  std::FILE* file_ = nullptr;
+};
+
+/// Replaces `path` by `content` atomically (AtomicFileWriter).
 /// \throws InvalidArgument naming the path and the system's reason.
 inline void write_file_atomically(const std::string& path, std::string_view content) {
-  namespace fs = std::filesystem;
-  const fs::path target(path);
-  require(!path.empty(), "cannot write a model file to an empty path");
-  std::error_code ec;
-  require(!fs::is_directory(target, ec), "cannot write model file '", path, "': it is a directory");
-  const auto stamp =
-      static_cast<unsigned long long>(std::chrono::steady_clock::now().time_since_epoch().count());
-  std::string temp;
-  std::FILE* file = nullptr;
-  for (unsigned attempt = 0; attempt < 100 && file == nullptr; ++attempt) {
-    temp = concat(path, ".tmp", stamp % 1000000007ULL, "-", attempt);
-    file = std::fopen(temp.c_str(), "wbx");  // x: fail if it exists (never share a temp file)
-    if (file == nullptr && errno != EEXIST) break;
-  }
-  require(file != nullptr, "cannot create a temporary file next to model file '", path,
-          "': ", std::strerror(errno));
-  const bool written =
-      content.empty() || std::fwrite(content.data(), 1, content.size(), file) == content.size();
-  const int write_errno = errno;
-  const bool closed = std::fclose(file) == 0;
-  if (!written || !closed) {
-    fs::remove(temp, ec);
-    throw InvalidArgument(concat("cannot write model file '", path,
-                                 "': ", std::strerror(written ? errno : write_errno)));
-  }
-  fs::rename(temp, target, ec);
-  if (ec) {
-    std::error_code ignored;
-    fs::remove(temp, ignored);
-    throw InvalidArgument(concat("cannot write model file '", path, "': ", ec.message()));
-  }
+  AtomicFileWriter file(path);
+  file.write(content);
+  file.commit();
 }
 
 }  // namespace hbos::detail

@@ -28,7 +28,7 @@ namespace hbos {
 template <class Scalar>
 [[nodiscard]] std::string to_model_text(const PyodHbos<Scalar>& model) {
   detail::TextWriter out;
-  detail::write_model_header(out, "pyod", detail::scalar_name<Scalar>());
+  detail::write_model_header(out, "pyod", detail::scalar_name<Scalar>(), 1);
   const PyodParams& p = model.params();
   out.line("n_features", model.n_features());
   out.line("n_samples", model.n_samples());
@@ -62,7 +62,11 @@ template <class Scalar>
 [[nodiscard]] PyodHbos<Scalar> pyod_hbos_from_model_text(std::string_view text,
                                                          const std::string& source = "model text") {
   detail::TextReader in(text, source);
-  detail::expect_model_header<Scalar>(in, "pyod", "load_pyod_hbos");
+  const ModelFileInfo info = detail::expect_model_header<Scalar>(in, "pyod", "load_pyod_hbos");
+  // Version 2 changed the default model's layout only: PyOD-mode files stay version 1.
+  if (info.version != 1)
+    in.fail("hbos-model-file",
+            detail::concat("a PyOD-mode model file is version 1, not ", info.version));
   const auto d = in.value<Eigen::Index>("n_features");
   if (d < 1 || d > (Eigen::Index{1} << 24))
     in.fail("n_features", detail::concat("must lie in [1, 2^24], got ", d));
