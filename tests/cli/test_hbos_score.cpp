@@ -438,7 +438,7 @@ TEST_CASE("hbos-score fit / score on a wide file: one feature at a time, bit for
     std::ofstream out(csv);
     for (int i = 0; i < 3; ++i) {
       for (Eigen::Index j = 0; j < d; ++j)
-        out << (j > 0 ? "," : "") << (j % 11 == 0 ? 4.25 : std::sin(double(i * d + j)) * 3.0);
+        out << (j > 0 ? "," : "") << (j % 11 == 5 ? 4.25 : std::sin(double(i * d + j)) * 3.0);
       out << '\n';
     }
   }

@@ -74,7 +74,7 @@ inline ModelFileInfo read_model_header(TextReader& in) {
 /// Reads the header and checks that the file holds a `kind` model of type Scalar.
 template <class Scalar>
 ModelFileInfo expect_model_header(TextReader& in, std::string_view kind, std::string_view loader) {
-  const ModelFileInfo info = read_model_header(in);
+  ModelFileInfo info = read_model_header(in);
   if (info.kind != kind)
     throw InvalidArgument(concat(in.source(), ": holds a '", info.kind, "' model, not '", kind,
                                  "' (load it with ",
