@@ -168,8 +168,14 @@ class Histogram {
     detail::validate_parts(parts, where);
     detail::validate(options);
     Histogram h;
+    // Counts are non-negative (validated above); a damaged file can still make their sum
+    // overflow, which must be an error, not undefined behaviour.
     Index n = 0;
-    for (const Index c : parts.counts) n += c;
+    for (const Index c : parts.counts) {
+      detail::require(c <= std::numeric_limits<Index>::max() - n, where,
+                      ": the counts add up to more than ", std::numeric_limits<Index>::max());
+      n += c;
+    }
     detail::require(n > 0, where, ": the counts add up to no samples");
     h.layout_.edges = std::move(parts.edges);
     h.layout_.lo = parts.lo;

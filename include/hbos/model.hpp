@@ -20,6 +20,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <type_traits>
 #include <utility>
 #include <vector>
@@ -77,8 +78,13 @@ template <class Scalar>
 void check_against_spec(const HistogramParts<Scalar>& p, const FeatureSpec& spec,
                         Eigen::Index n_samples, Eigen::Index j) {
   const bool equal_frequency = spec.binning.method == BinningMethod::EqualFrequency;
+  // A saturating sum: a damaged file's counts must give an error, not an overflow.
+  constexpr Eigen::Index kMost = std::numeric_limits<Eigen::Index>::max();
   Eigen::Index counted = 0;
-  for (const Eigen::Index c : p.counts) counted += c;
+  for (const Eigen::Index c : p.counts) {
+    require(c >= 0, "feature ", j, ": its histogram has a negative count (", c, ")");
+    counted = c > kMost - counted ? kMost : counted + c;
+  }
   require(counted == n_samples, "feature ", j, ": its histogram counts ", counted,
           " samples, the model ", n_samples);
   require(p.periodic == spec.periodic && p.tail == spec.tail, "feature ", j,

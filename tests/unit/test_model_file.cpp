@@ -363,6 +363,9 @@ TEST_CASE("damaged version 2 model files are refused naming the line and the fie
   check_refused(with(8, "x"), {"edge form 'x'"});
   check_refused(with(10, "-1"), {"feature 0", "negative"});
   check_refused(with(10, "1000"), {"feature 0", "counts 1", "the model 50"});
+  // Counts whose sum overflows a signed 64-bit integer: an error, not undefined behaviour
+  // (the sanitizer build checks the latter).
+  check_refused(with(10, "9223372036854775807"), {"feature 0", "the model 50"});
   check_refused(with(10, "1.5"), {"(f.counts)", "not a whole number"});
   check_refused(with(3, "1e30"), {"(f.fine)", "does not match inv_width 1e+30"});
   check_refused(with(4, "1"), {"feature 0", "period"});
