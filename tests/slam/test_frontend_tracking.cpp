@@ -97,6 +97,35 @@ TEST_CASE("person without mask: the default screen removes most of its matches",
   CHECK(*unscreened.run.totals.person_survival_share == 1.0);
 }
 
+namespace {
+
+/// Checks that evidence the front end passes to the screen (switched by `flag`) makes the
+/// default keep fewer person matches, by more than `min_gain` of them, at no more than
+/// `max_static_cost` extra static loss, and that it changes none of chi2's decisions.
+void check_evidence_helps(hbos::slam::Config config, int frames,
+                          bool hbos::slam::ScreenStageConfig::*flag, int min_person_matches,
+                          double min_gain, double max_static_cost) {
+  auto run = [&](bool on) {
+    config.screen.*flag = on;
+    return track_embedded(config, frames).run.totals;
+  };
+  const auto off = run(false);
+  const auto on = run(true);
+  REQUIRE(off.person_matches > min_person_matches);
+  REQUIRE(off.person_survival_share.has_value());
+  REQUIRE(on.person_survival_share.has_value());
+  CHECK(*on.person_survival_share < *off.person_survival_share - min_gain);
+  CHECK(on.static_loss_share < off.static_loss_share + max_static_cost);
+
+  config.screen.select("chi2");
+  const auto chi2_off = run(false);
+  const auto chi2_on = run(true);
+  CHECK(chi2_on.person_survivors == chi2_off.person_survivors);
+  CHECK(chi2_on.static_dropped == chi2_off.static_dropped);
+}
+
+}  // namespace
+
 TEST_CASE("degraded mask: the mask's neighbourhood, passed to the screen, rejects more leaks",
           "[frontend][tracking][screen][mask]") {
   // The degraded mask leaks the person's edges and legs. With each match's distance to the mask
@@ -106,26 +135,7 @@ TEST_CASE("degraded mask: the mask's neighbourhood, passed to the screen, reject
   hbos::slam::Config config;
   config.scenario.add_person = true;
   config.mask.source = hbos::slam::MaskSource::kDegraded;
-  const int frames = 37;
-  config.screen.mask_evidence = false;
-  const Outcome off = track_embedded(config, frames);
-  config.screen.mask_evidence = true;
-  const Outcome on = track_embedded(config, frames);
-  const auto& a = off.run.totals;
-  const auto& b = on.run.totals;
-  REQUIRE(a.person_matches > 100);
-  REQUIRE(b.person_survival_share.has_value());
-  REQUIRE(a.person_survival_share.has_value());
-  CHECK(*b.person_survival_share < *a.person_survival_share - 0.005);
-  CHECK(b.static_loss_share < a.static_loss_share + 0.01);
-
-  config.screen.select("chi2");
-  config.screen.mask_evidence = false;
-  const Outcome chi2_off = track_embedded(config, frames);
-  config.screen.mask_evidence = true;
-  const Outcome chi2_on = track_embedded(config, frames);
-  CHECK(chi2_on.run.totals.person_survivors == chi2_off.run.totals.person_survivors);
-  CHECK(chi2_on.run.totals.static_dropped == chi2_off.run.totals.static_dropped);
+  check_evidence_helps(config, 37, &hbos::slam::ScreenStageConfig::mask_evidence, 100, 0.005, 0.01);
 }
 
 TEST_CASE(
@@ -140,26 +150,7 @@ TEST_CASE(
   hbos::slam::Config config;
   config.scenario.add_person = true;
   config.mask.source = hbos::slam::MaskSource::kNone;
-  const int frames = 20;
-  config.screen.track_history = false;
-  const Outcome off = track_embedded(config, frames);
-  config.screen.track_history = true;
-  const Outcome on = track_embedded(config, frames);
-  const auto& a = off.run.totals;
-  const auto& b = on.run.totals;
-  REQUIRE(a.person_matches > 300);
-  REQUIRE(a.person_survival_share.has_value());
-  REQUIRE(b.person_survival_share.has_value());
-  CHECK(*b.person_survival_share < *a.person_survival_share - 0.01);
-  CHECK(b.static_loss_share < a.static_loss_share + 0.03);
-
-  config.screen.select("chi2");
-  config.screen.track_history = false;
-  const Outcome chi2_off = track_embedded(config, frames);
-  config.screen.track_history = true;
-  const Outcome chi2_on = track_embedded(config, frames);
-  CHECK(chi2_on.run.totals.person_survivors == chi2_off.run.totals.person_survivors);
-  CHECK(chi2_on.run.totals.static_dropped == chi2_off.run.totals.static_dropped);
+  check_evidence_helps(config, 20, &hbos::slam::ScreenStageConfig::track_history, 300, 0.01, 0.03);
 }
 
 TEST_CASE("hbos-slam writes its outputs on a short run", "[frontend][command]") {
