@@ -94,8 +94,8 @@ void add_options(CLI::App& app, CommandOptions& o) {
                "frame tracker: pass each match chain's forgetting-weighted outlier share to "
                "the screen (the default screen's persistence evidence)")
       ->capture_default_str();
-  app.add_option("--history-forgetting", s.base.screen.history_forgetting,
-                 "weight of the past per screening in --track-history's share")
+  app.add_option("--history-forgetting", s.base.map.history.forgetting,
+                 "weight of the past per screening in the outlier shares both trackers keep")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 1.0));
   app.add_option("--rounds", s.base.screen.rounds, "screen -> refine -> re-screen rounds")

@@ -114,12 +114,12 @@ struct ScreenStageConfig {
   bool mask_evidence = true;
   /// The frame tracker follows each keypoint along its chain of frame-to-frame matches and
   /// passes the chain's outlier share (frontend/outlier_share.hpp) to the screen: the default's
-  /// persistence evidence. The map tracker keeps its own per map point (MapConfig::history).
+  /// persistence evidence. The map tracker keeps its own per map point (MapConfig::history);
+  /// both forget at MapConfig::history.forgetting.
   /// On: it lowered the default's ATE on the semi-real paths without a mask or with a leaky one
   /// and in the rendered benchmark, at 1-3 points of statics (docs/slam_demo.md, "The match
   /// chains' memory").
   bool track_history = true;
-  double history_forgetting = 0.8;  ///< in [0, 1]: weight of the past per screening
 
   /// Selects a strategy of hbos::named_strategies() by name, or "none".
   /// \throws hbos::InvalidArgument naming the value and the choices.

@@ -31,9 +31,9 @@ Tracker::Tracker(const Config& config, const CameraModel& camera)
       mask_reach_px_(mask_evidence_reach_px(config)),
       pass_mask_distance_(mask_reach_px_ > 0.0),
       pass_history_(frame_history_wanted(config)),
-      forgetting_(config.screen.history_forgetting) {
+      forgetting_(config.map.history.forgetting) {
   if (!(forgetting_ >= 0.0 && forgetting_ <= 1.0))
-    throw InvalidArgument("screen history forgetting must lie in [0, 1], got " +
+    throw InvalidArgument("history forgetting must lie in [0, 1], got " +
                           std::to_string(forgetting_));
 }
 

@@ -30,7 +30,7 @@ std::string grid_run_settings(const Config& c, const PersonVariant& v, int frame
       "features={}",
       c.dataset.path, frames, c.dataset.camera, to_string(c.tracker), c.scenario.person_dir,
       v.depth_m, v.speed_px_per_frame, v.start_x_px, to_string(c.mask.source), c.screen.name,
-      c.screen.rounds, c.screen.mask_evidence, c.screen.track_history, c.screen.history_forgetting,
+      c.screen.rounds, c.screen.mask_evidence, c.screen.track_history, c.map.history.forgetting,
       to_string(c.rough_pose.method), c.rough_pose.ransac_threshold_px, c.extraction.features);
 }
 
