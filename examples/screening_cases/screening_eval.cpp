@@ -138,8 +138,8 @@ std::string equal_loss_markdown(const std::vector<CaseMetrics>& all,
       "\n#### Persistence: the default with the caller's outlier history\n\n"
       "The pairs screened in order; each track keeps the forgetting-weighted (0.8) share of its "
       "screenings that rejected it, as the map tracker does, and passes it as the match's "
-      "outlier history (HistoryEvidence fires above 0.5). The baselines are swept to this "
-      "screen's static loss.\n\n";
+      "outlier history (HistoryEvidence fires above 0.5, beyond one noise scale). The "
+      "baselines are swept to this screen's static loss.\n\n";
   md += equal_loss_table(
       all, "default + history",
       [](const CaseMetrics& m) -> const auto& { return m.default_with_history; },

@@ -195,7 +195,9 @@ TEST_CASE("mask neighbourhood and history are evidence only above their floors",
   const double s = 0.4;
   hbos::Matchesd m = static_matches(300, s, 31);
   // Two matches 1.8 px/sigma off (3 < 4.5 scales: beyond the mask floor, inside the gate), one
-  // next to a mask, one far from it; two ordinary matches with a long and a short history.
+  // next to a mask, one far from it; two matches 1.5 px/sigma off (beyond the history's floor of
+  // one scale, inside the gate) with a long and a short history; one match as close as the
+  // background's noise with a long history.
   const Eigen::Index near_mask = m.size();
   m.add(Vec2(100, 100), Vec2(101.8, 100));
   m.set_mask_distance(near_mask, 3.0);
@@ -203,21 +205,52 @@ TEST_CASE("mask neighbourhood and history are evidence only above their floors",
   m.add(Vec2(500, 400), Vec2(501.8, 400));
   m.set_mask_distance(far_mask, 60.0);
   const Eigen::Index persistent = m.size();
-  m.add(Vec2(300, 300), Vec2(300.2, 300.1));
+  m.add(Vec2(300, 300), Vec2(301.5, 300.3));
   m.set_outlier_history(persistent, 0.9);
   const Eigen::Index forgiven = m.size();
-  m.add(Vec2(320, 300), Vec2(320.2, 300.1));
+  m.add(Vec2(320, 300), Vec2(321.5, 300.3));
   m.set_outlier_history(forgiven, 0.2);
+  const Eigen::Index looks_static = m.size();
+  m.add(Vec2(340, 300), Vec2(340.2, 300.1));
+  m.set_outlier_history(looks_static, 0.9);
   hbos::ReprojectionScreend screen;
   const auto& r = screen.screen(m);
   CHECK_FALSE(r.inlier(near_mask));
   CHECK(r.inlier(far_mask));
   CHECK_FALSE(r.inlier(persistent));
   CHECK(r.inlier(forgiven));
+  CHECK(r.inlier(looks_static));
   CHECK(r.score(near_mask) > r.threshold());
   CHECK(r.contributions()(near_mask, 2) > 0.0);  // charged to the "mask" feature
   CHECK(std::string(r.feature_name(2)) == "mask");
   CHECK(std::string(r.feature_name(3)) == "history");
+}
+
+TEST_CASE("a history charges a match only beyond its floor of noise scales",
+          "[screen_v2][evidence][property]") {
+  // Static frames where every match carries a long outlier history, as a static track would
+  // after one wrong rejection. At any floor, a charged match lies beyond it; with the default
+  // floor (one scale) far fewer are rejected than without it.
+  std::mt19937 rng(57);
+  std::uniform_real_distribution<double> share(0.6, 1.0);
+  for (const double min_scales : {0.0, 1.0, 2.0, 3.0}) {
+    hbos::HbosScreen settings;
+    settings.history.min_scales = min_scales;
+    hbos::ReprojectionScreend screen(settings);
+    double kept = 0.0, total = 0.0;
+    for (std::uint32_t seed = 0; seed < 10; ++seed) {
+      hbos::Matchesd m = static_matches(400, 0.3 + 0.05 * seed, 200 + seed);
+      for (Eigen::Index i = 0; i < m.size(); ++i) m.set_outlier_history(i, share(rng));
+      const auto& r = screen.screen(m);
+      for (Eigen::Index i = 0; i < r.size(); ++i) {
+        if (r.contributions()(i, 3) > 0.0) CHECK(r.magnitude(i) > min_scales * r.noise_scale());
+        kept += r.inlier(i) ? 1.0 : 0.0;
+        total += 1.0;
+      }
+    }
+    if (min_scales == 0.0) CHECK(kept / total < 0.5);
+    if (min_scales == 1.0) CHECK(kept / total > 0.5);
+  }
 }
 
 TEST_CASE("one round per call: the result says its unit and its cut", "[screen_v2][api]") {

@@ -14,7 +14,7 @@
 ///  With the noise gate (the default):
 ///  3. s = the robust noise scale of m over F (noise_scale.hpp), G = max(floor, scales s).
 ///  4. Evidence per match: coherence l_i (neighbourhood.hpp), mask neighbourhood, history; each
-///     fires above its floor.
+///     fires above its floor (mask and history only where m_i is above their `min_scales` s).
 ///  5. B = the matches of F that look static (m <= G, no evidence fired); with
 ///     FieldFit::refit_on_static the field is refitted on B and steps 2-5 run once more.
 ///  6. One histogram per evidence feature (and the magnitude) fitted on B (histogram.hpp,
@@ -525,6 +525,9 @@ void ReprojectionScreen<Scalar>::gate_and_evidence(const Matches<Scalar>& matche
   looks_static_.assign(un, 0);
   const auto mask_radius = static_cast<Scalar>(s.mask.radius_px);
   const Scalar mask_floor = static_cast<Scalar>(s.mask.min_scales) * s_eff;
+  // A residual this close to the background is what the frame's own noise gives: the history
+  // alone does not overrule it, or a static chain rejected once would stay rejected.
+  const Scalar history_floor = static_cast<Scalar>(s.history.min_scales) * s_eff;
   for (Index i = 0; i < n; ++i) {
     const auto k = static_cast<std::size_t>(i);
     std::uint8_t fired = 0;
@@ -537,7 +540,7 @@ void ReprojectionScreen<Scalar>::gate_and_evidence(const Matches<Scalar>& matche
     const Scalar h = matches.outlier_history(i);
     if (s.history.enabled && !std::isnan(h)) {
       history_[k] = h;
-      if (h > static_cast<Scalar>(s.history.floor)) fired |= 4;
+      if (h > static_cast<Scalar>(s.history.floor) && r.magnitude_[k] > history_floor) fired |= 4;
     }
     fired_[k] = fired;
     looks_static_[k] = in_fit(matches, i) && r.magnitude_[k] <= gate_ && fired == 0 ? 1 : 0;

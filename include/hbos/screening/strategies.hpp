@@ -101,10 +101,16 @@ struct MaskEvidence {
 };
 
 /// Persistence: a track or map point the caller has seen screened out before (its outlier
-/// history, Matches::set_outlier_history) counts as evidence above `floor`.
+/// history, Matches::set_outlier_history) counts as evidence above `floor`, once its magnitude
+/// is above `min_scales` noise scales. Below one scale (the mode of the background's own
+/// residuals, 2-D Gaussian noise of scale s) the residual fits the background better than a
+/// typical static match does, and a prior alone must not overrule that: callers record the
+/// screen's decisions into the history, so a static point rejected once would otherwise stay
+/// rejected for as long as it is tracked.
 struct HistoryEvidence {
   bool enabled = true;
-  double floor = 0.5;  ///< in [0, 1)
+  double floor = 0.5;       ///< in [0, 1)
+  double min_scales = 1.0;  ///< >= 0; 0: the history fires at any magnitude
 };
 
 /// How the dominant residual field resists a dynamic object that holds many matches.
@@ -282,6 +288,8 @@ inline void validate(const HbosScreen& s) {
           "MaskEvidence min_scales must be finite and > 0, got ", s.mask.min_scales);
   require(s.history.floor >= 0.0 && s.history.floor < 1.0,
           "HistoryEvidence floor must lie in [0, 1), got ", s.history.floor);
+  require(std::isfinite(s.history.min_scales) && s.history.min_scales >= 0.0,
+          "HistoryEvidence min_scales must be finite and >= 0, got ", s.history.min_scales);
   require(std::isfinite(s.field.balance_cell_px) &&
               (s.field.balance_cell_px == 0.0 || s.field.balance_cell_px >= 1.0),
           "FieldFit balance_cell_px must be 0 (off) or finite and >= 1, got ",
