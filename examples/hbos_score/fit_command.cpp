@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "csv_reader.hpp"
+#include "data_matrix.hpp"
 #include "npy_reader.hpp"
 #include "row_blocks.hpp"
 
@@ -139,12 +140,15 @@ Hbosd fit_streaming(const std::string& path, const CsvOptions& csv, const HbosPa
 /// histogram is fitted (by the code Hbos::fit runs for it) and appended to the model file, so
 /// only one histogram is held, not one per feature (a fitted Hbos of 1e7 features takes GBs).
 /// The file is the one save_model(Hbosd::fit(x, params)) writes.
-void fit_to_file(const Eigen::MatrixXd& x, const HbosParams& params, const std::string& path) {
+/// Each column is fitted from rows() contiguous values (gathered from a row-major store), as
+/// Hbos::fit reads a column of a column-major matrix, so the bits are the same.
+void fit_to_file(const DataMatrix& x, const HbosParams& params, const std::string& path) {
   ModelFileWriter<double> file(path, params, x.cols(), x.rows());
   Histogram<double> histogram;
-  std::vector<double> scratch;
+  std::vector<double> scratch, column;
   for (Eigen::Index j = 0; j < x.cols(); ++j) {
-    histogram.refit(x.col(j), params.spec(j), params.scoring, scratch, j);
+    const Eigen::Map<const Eigen::VectorXd> values(x.column(j, column), x.rows());
+    histogram.refit(values, params.spec(j), params.scoring, scratch, j);
     file.add(histogram);
   }
   file.commit();
@@ -208,11 +212,11 @@ int fit_command(int argc, char** argv) {
       cols = model.n_features();
       save_model(model, o.output);
     } else {
-      const Eigen::MatrixXd x = read_data_matrix(o.input, csv);
+      const DataMatrix x = read_data(o.input, csv);
       rows = x.rows();
       cols = x.cols();
       if (o.mode == "pyod") {
-        save_model(PyodHbosd::fit(x, pyod_params(o)), o.output);
+        save_model(PyodHbosd::fit(x.matrix(), pyod_params(o)), o.output);
       } else {
         // Hbos::fit's checks, in its order, before the output is created.
         detail::require(x.rows() > 0, "cannot fit to an empty data set (0 rows)");

@@ -1,11 +1,14 @@
 #include "npy_reader.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <limits>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 namespace hbos::cli {
@@ -107,33 +110,41 @@ NpyArray read_npy(const std::string& path) {
   if (rows > std::numeric_limits<Eigen::Index>::max() / cols / 8)
     fail(path, "the array shape is too large");
 
+  // The values go straight into the buffer kept: C order is the row-major matrix, Fortran
+  // order the row-major store of its transpose.
   const auto count = static_cast<std::size_t>(rows * cols);
   const std::size_t width = out.float32 ? 4 : 8;
-  std::vector<char> bytes(count * width);
-  if (!in.read(bytes.data(), static_cast<std::streamsize>(bytes.size())))
+  auto truncated = [&] {
     fail(path, "truncated data: the header declares " + std::to_string(rows) + " x " +
                    std::to_string(cols) + " values of " + std::to_string(width) + " bytes");
-  if (in.peek() != std::char_traits<char>::eof())
-    fail(path, "trailing bytes after the " + std::to_string(count) + " declared values");
-
-  out.values.resize(rows, cols);
-  for (std::size_t k = 0; k < count; ++k) {
-    double v;
-    if (out.float32) {
-      float f;
-      std::memcpy(&f, bytes.data() + k * 4, 4);
-      v = static_cast<double>(f);
-    } else {
-      std::memcpy(&v, bytes.data() + k * 8, 8);
-    }
-    // C order: k = i * cols + j; Fortran order: k = j * rows + i (= the column-major index).
-    const auto ki = static_cast<Eigen::Index>(k);
-    if (fortran) {
-      out.values.data()[ki] = v;
-    } else {
-      out.values(ki / cols, ki % cols) = v;
+  };
+  // A header declaring more values than the file holds is refused before the buffer is taken.
+  const std::streamoff at = in.tellg();
+  std::error_code size_error;
+  const std::uintmax_t file_bytes = std::filesystem::file_size(path, size_error);
+  if (!size_error && at >= 0 &&
+      file_bytes - static_cast<std::uintmax_t>(at) < static_cast<std::uintmax_t>(count * width))
+    truncated();
+  RowStore store(static_cast<Eigen::Index>(fortran ? rows : cols));
+  store.resize_rows(static_cast<Eigen::Index>(fortran ? cols : rows));
+  if (!out.float32) {
+    // The bytes of '<f8' are the doubles of a little-endian machine (as memcpy assumed before).
+    if (!in.read(reinterpret_cast<char*>(store.data()), static_cast<std::streamsize>(count * 8)))
+      truncated();
+  } else {
+    constexpr std::size_t kChunk = std::size_t{1} << 18;  // floats: 1 MiB at a time
+    std::vector<float> chunk(std::min(count, kChunk));
+    for (std::size_t done = 0; done < count;) {
+      const std::size_t m = std::min(kChunk, count - done);
+      if (!in.read(reinterpret_cast<char*>(chunk.data()), static_cast<std::streamsize>(m * 4)))
+        truncated();
+      for (std::size_t k = 0; k < m; ++k) store.data()[done + k] = static_cast<double>(chunk[k]);
+      done += m;
     }
   }
+  if (in.peek() != std::char_traits<char>::eof())
+    fail(path, "trailing bytes after the " + std::to_string(count) + " declared values");
+  out.values = DataMatrix(std::move(store), fortran);
   return out;
 }
 
@@ -143,9 +154,16 @@ bool is_npy_path(const std::string& path) {
          path.compare(path.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
-Eigen::MatrixXd read_data_matrix(const std::string& path, const CsvOptions& csv) {
-  if (is_npy_path(path)) return read_npy(path).values;
-  return read_csv(path, csv).features;
+DataMatrix read_data(const std::string& path, const CsvOptions& csv) {
+  if (is_npy_path(path)) return std::move(read_npy(path).values);
+  // Rows go into a RowStore as they are parsed; the layout (column names: 32 bytes and more a
+  // column) stays the parser's and is not copied.
+  RowStore values;
+  CsvHandlers handlers;
+  handlers.on_layout = [&](const CsvLayout& layout) { values = RowStore(layout.n_features()); };
+  handlers.on_row = [&](const CsvRow& row) { values.append(row.features); };
+  read_csv_rows(path, csv, handlers);
+  return DataMatrix(std::move(values), false);
 }
 
 }  // namespace hbos::cli

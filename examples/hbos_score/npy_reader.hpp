@@ -6,14 +6,16 @@
 /// anything else (big-endian, integers, objects, 3-D, a truncated file) is refused with the file
 /// and the reason.
 ///
-/// `read_data_matrix` is the input of `hbos-score fit` and `hbos-score score`: a `.npy` path is
-/// read by read_npy, anything else as CSV by the streaming CSV reader (csv_reader.hpp).
+/// `read_data` is the input of `hbos-score fit` and `hbos-score score` when they hold the data: a
+/// `.npy` path is read by read_npy, anything else as CSV by the streaming CSV reader
+/// (csv_reader.hpp), in both cases straight into the one buffer kept (data_matrix.hpp).
 
 #include <Eigen/Core>
 #include <stdexcept>
 #include <string>
 
 #include "csv_reader.hpp"
+#include "data_matrix.hpp"
 
 namespace hbos::cli {
 
@@ -25,18 +27,22 @@ class NpyError : public std::runtime_error {
 
 /// An array read from a .npy file, as doubles (float32 values are widened exactly).
 struct NpyArray {
-  Eigen::MatrixXd values;  ///< rows x cols, column-major (a 1-D array is one column)
-  bool float32 = false;    ///< the file held float32 values
+  /// rows x cols in the file's order: row-major for C order, column-major for Fortran order
+  /// (a 1-D array is one column)
+  DataMatrix values;
+  bool float32 = false;  ///< the file held float32 values
 };
 
-/// Reads the .npy file at `path`. \throws NpyError naming the file and what is wrong.
+/// Reads the .npy file at `path` into its final buffer (float64 data is read in place; float32
+/// widened 1 MiB at a time). \throws NpyError naming the file and what is wrong.
 [[nodiscard]] NpyArray read_npy(const std::string& path);
 
-/// Whether `path` names a `.npy` file (by its suffix): how read_data_matrix decides.
+/// Whether `path` names a `.npy` file (by its suffix): how read_data decides.
 [[nodiscard]] bool is_npy_path(const std::string& path);
 
-/// The feature matrix of `path`: read_npy for a `.npy` file, else CSV read with `csv` (features
-/// only: a label column or ignored columns are dropped). \throws NpyError or CsvError.
-[[nodiscard]] Eigen::MatrixXd read_data_matrix(const std::string& path, const CsvOptions& csv);
+/// The feature matrix of `path`, held once: read_npy for a `.npy` file, else CSV read with `csv`
+/// row by row into a row-major store (features only: a label column or ignored columns are
+/// dropped; the column names are not kept). \throws NpyError or CsvError.
+[[nodiscard]] DataMatrix read_data(const std::string& path, const CsvOptions& csv);
 
 }  // namespace hbos::cli

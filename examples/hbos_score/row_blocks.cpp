@@ -1,6 +1,7 @@
 #include "row_blocks.hpp"
 
 #include <algorithm>
+#include <utility>
 #include <vector>
 
 #include "npy_reader.hpp"
@@ -33,11 +34,18 @@ void for_each_row_block(const std::string& path, const CsvOptions& csv,
                         const std::function<void(const RowBlock&)>& on_block) {
   using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
   if (is_npy_path(path)) {
-    const Eigen::MatrixXd x = read_npy(path).values;
+    // Held once, in the file's order: a C-order file's blocks are handed over in place, a
+    // Fortran-order file's copied a block at a time.
+    const DataMatrix x = std::move(read_npy(path).values);
     const Eigen::Index step = rows_per_block(x.cols());
     for (Eigen::Index start = 0; start < x.rows(); start += step) {
-      const RowMajor block = x.middleRows(start, std::min(step, x.rows() - start));
-      on_block(block);
+      const Eigen::Index m = std::min(step, x.rows() - start);
+      if (x.column_major()) {
+        const RowMajor block = x.matrix().middleRows(start, m);
+        on_block(block);
+      } else {
+        on_block(Eigen::Map<const RowMajor>(x.data() + start * x.cols(), m, x.cols()));
+      }
     }
     return;
   }

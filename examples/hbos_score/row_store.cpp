@@ -23,4 +23,17 @@ void RowStore::append(const double* row) {
   ++rows_;
 }
 
+void RowStore::resize_rows(Eigen::Index rows) {
+  const auto count = static_cast<std::size_t>(rows) * static_cast<std::size_t>(cols_);
+  if (count > static_cast<std::size_t>(-1) / sizeof(double)) throw std::bad_alloc();
+  if (count != capacity_) {
+    void* resized = std::realloc(data_.get(), std::max<std::size_t>(count, 1) * sizeof(double));
+    if (resized == nullptr) throw std::bad_alloc();
+    static_cast<void>(data_.release());
+    data_.reset(static_cast<double*>(resized));
+    capacity_ = std::max<std::size_t>(count, 1);
+  }
+  rows_ = rows;
+}
+
 }  // namespace hbos::cli

@@ -23,6 +23,11 @@ class RowStore {
   /// Appends one row of cols() values. \throws std::bad_alloc when memory runs out.
   void append(const double* row);
 
+  /// Sets the row count to `rows` with room for exactly rows x cols() values (for a size known
+  /// beforehand, e.g. a .npy header's); rows beyond the old count are left uninitialised for the
+  /// caller to fill. \throws std::bad_alloc when memory runs out.
+  void resize_rows(Eigen::Index rows);
+
   [[nodiscard]] Eigen::Index rows() const { return rows_; }
   [[nodiscard]] Eigen::Index cols() const { return cols_; }
   [[nodiscard]] double* data() { return data_.get(); }

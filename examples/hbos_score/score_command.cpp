@@ -13,9 +13,11 @@
 #include <stdexcept>
 #include <string>
 #include <system_error>
+#include <vector>
 
 #include "common/atomic_file.hpp"
 #include "csv_reader.hpp"
+#include "data_matrix.hpp"
 #include "npy_reader.hpp"
 #include "row_blocks.hpp"
 
@@ -49,13 +51,14 @@ bool score_by_feature(const std::string& input, Eigen::Index n_features) {
 /// The scores of the rows of `x`, read whole, by the model file read one feature at a time:
 /// each feature's contributions are added in feature order, as Hbos::score adds them, so the
 /// scores are load_hbos(path).score(x)'s bit for bit, with one histogram in memory at a time.
-Eigen::VectorXd score_by_feature(ModelFileReader<double>& model, const Eigen::MatrixXd& x) {
+Eigen::VectorXd score_by_feature(ModelFileReader<double>& model, const DataMatrix& x) {
   detail::require(x.cols() == model.n_features(), "the model was fitted on ", model.n_features(),
                   " features but the data to score has ", x.cols(), " columns");
   Eigen::VectorXd scores(x.rows());
+  std::vector<double> column;
   for (Eigen::Index j = 0; j < x.cols(); ++j) {
     const Histogram<double> histogram = model.next();
-    histogram.contributions_into(detail::ColumnView<double>{x.col(j).data(), x.rows(), 1},
+    histogram.contributions_into(detail::ColumnView<double>{x.column(j, column), x.rows(), 1},
                                  scores.data(), j > 0, j);
   }
   model.finish();
@@ -119,7 +122,7 @@ int score_command(int argc, char** argv) {
       });
     } else if (ModelFileReader<double> reader(model_path);
                score_by_feature(input, reader.n_features())) {
-      scores = score_by_feature(reader, read_data_matrix(input, csv));
+      scores = score_by_feature(reader, read_data(input, csv));
       text = "score\n";
       for (Eigen::Index i = 0; i < scores.size(); ++i) {
         append_number(text, scores[i]);
