@@ -154,6 +154,26 @@ void fit_to_file(const DataMatrix& x, const HbosParams& params, const std::strin
   file.commit();
 }
 
+/// Whether the PyOD-mode fit of data held in memory goes one feature at a time: a PyodHbos keeps
+/// a look-up grid of at least 1024 cells (24 KB) per feature, the feature-by-feature fit about
+/// ten doubles per row for the training scores (PyodFeatureScores), so it is the cheaper of the
+/// two unless the rows outnumber the features about 200 to 1. Both write the same file.
+bool pyod_by_feature(const DataMatrix& x) {
+  constexpr Eigen::Index kFeatureBytes = 24 * 1024, kRowBytes = 128;
+  return x.rows() <= x.cols() * (kFeatureBytes / kRowBytes);
+}
+
+/// The PyOD-mode fit written one feature at a time (PyodModelFileWriter): each column is fitted
+/// where it lies in the data (strided in a row-major store, as PyodHbos::fit reads it) and
+/// appended to the file; the training scores are summed feature by feature in numpy's order.
+/// The file is the one save_model(PyodHbosd::fit(x, params)) writes.
+void pyod_fit_to_file(const DataMatrix& x, const PyodParams& params, const std::string& path) {
+  PyodModelFileWriter<double> file(path, params, x.cols(), x.rows());
+  for (Eigen::Index j = 0; j < x.cols(); ++j)
+    file.add(x.data() + j * x.col_stride(), x.row_stride());
+  file.commit();
+}
+
 }  // namespace
 
 int fit_command(int argc, char** argv) {
@@ -216,7 +236,11 @@ int fit_command(int argc, char** argv) {
       rows = x.rows();
       cols = x.cols();
       if (o.mode == "pyod") {
-        save_model(PyodHbosd::fit(x.matrix(), pyod_params(o)), o.output);
+        if (pyod_by_feature(x)) {
+          pyod_fit_to_file(x, pyod_params(o), o.output);
+        } else {
+          save_model(PyodHbosd::fit(x.matrix(), pyod_params(o)), o.output);
+        }
       } else {
         // Hbos::fit's checks, in its order, before the output is created.
         detail::require(x.rows() > 0, "cannot fit to an empty data set (0 rows)");

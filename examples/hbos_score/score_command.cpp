@@ -65,6 +65,30 @@ Eigen::VectorXd score_by_feature(ModelFileReader<double>& model, const DataMatri
   return scores;
 }
 
+/// The PyOD-mode scores of the rows of `x` by the model file read one feature at a time: each
+/// feature's log terms are added in numpy's pairwise order over the features
+/// (PyodFeatureScores), so the scores are load_pyod_hbos(path).decision_function(x)'s bit for bit,
+/// with one feature of the model in memory at a time. `threshold` is set from the file's end.
+Eigen::VectorXd pyod_score_by_feature(PyodModelFileReader<double>& model, const DataMatrix& x,
+                                      double& threshold) {
+  detail::require(x.cols() == model.n_features(), "X has ", x.cols(),
+                  " columns but the model was fitted on ", model.n_features(), " features");
+  PyodFeatureScores<double> scores(x.cols(), x.rows());
+  for (Eigen::Index j = 0; j < x.cols(); ++j)
+    scores.add(model.next(), x.data() + j * x.col_stride(), x.row_stride());
+  model.finish();
+  threshold = model.threshold();
+  return scores.scores();
+}
+
+/// Whether PyOD-mode scoring of data held in memory goes one feature at a time (see `fit`'s
+/// rule: a feature of a loaded PyodHbos takes 24 KB, the scores by feature about ten doubles a
+/// row).
+bool pyod_by_feature(const DataMatrix& x) {
+  constexpr Eigen::Index kFeatureBytes = 24 * 1024, kRowBytes = 128;
+  return x.rows() <= x.cols() * (kFeatureBytes / kRowBytes);
+}
+
 }  // namespace
 
 int score_command(int argc, char** argv) {
@@ -109,7 +133,30 @@ int score_command(int argc, char** argv) {
       }
     };
     Eigen::VectorXd scores;
-    if (info.kind == "pyod") {
+    auto write_labelled = [&](double threshold) {
+      text = "score,label\n";
+      for (Eigen::Index i = 0; i < scores.size(); ++i) {
+        append_number(text, scores[i]);
+        text += scores[i] > threshold ? ",1\n" : ",0\n";
+        write_if_full();
+      }
+    };
+    if (info.kind == "pyod" &&
+        score_by_feature(input, PyodModelFileReader<double>(model_path).n_features())) {
+      // Data held whole (a file short for its width, or .npy): wide data is scored with the
+      // model read one feature at a time, other data with the model loaded whole.
+      const DataMatrix x = read_data(input, csv);
+      double threshold = 0.0;
+      if (pyod_by_feature(x)) {
+        PyodModelFileReader<double> model(model_path);
+        scores = pyod_score_by_feature(model, x, threshold);
+      } else {
+        const auto model = load_pyod_hbos<double>(model_path);
+        scores = model.decision_function(x.matrix());
+        threshold = model.threshold();
+      }
+      write_labelled(threshold);
+    } else if (info.kind == "pyod") {
       const auto model = load_pyod_hbos<double>(model_path);
       text = "score,label\n";
       for_each_row_block(input, csv, [&](const RowBlock& block) {

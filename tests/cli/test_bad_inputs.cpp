@@ -241,6 +241,41 @@ TEST_CASE(
   CHECK(lines == 3);  // the header and one score per row
 }
 
+TEST_CASE(
+    "bad input: hbos-score fit and score --mode pyod on 2 x 2e5 columns stay within 100 MB of "
+    "address space",
+    "[bad_inputs][hbos_score][memory][pyod]") {
+  // A PyOD-mode model holds a look-up grid of at least 1024 cells (24 KB) per feature: 2e5
+  // features took 5 GB to fit or load, and a model of 2 x 1e7 columns could not be fitted at
+  // all. Now `fit` fits and writes one feature at a time and `score` reads the model one feature
+  // at a time (the training and new scores summed in numpy's order as the features go by); the
+  // old code fails here with std::bad_alloc, the new needs about 35 MB.
+  if (skipped_under_asan()) return;
+  const fs::path dir = scratch("fit_wide_pyod");
+  {
+    std::ofstream out(dir / "wide.csv");
+    for (int row = 0; row < 2; ++row) {
+      for (int j = 0; j < 200000; ++j) out << (j ? "," : "") << (row * 3 + j * 7) % 10;
+      out << "\n";
+    }
+  }
+  const std::string data = (dir / "wide.csv").string(), model = (dir / "wide.hbos").string();
+  const int fit = score_within(100000, {"fit", data, "--no-header", "--mode", "pyod", "-o", model},
+                               dir / "fit.err");
+  INFO(slurp(dir / "fit.err"));
+  REQUIRE(fit == 0);
+  const std::string scores = (dir / "scores.csv").string();
+  const int score =
+      score_within(100000, {"score", model, data, "--no-header", "-o", scores}, dir / "score.err");
+  INFO(slurp(dir / "score.err"));
+  CHECK(score == 0);
+  CHECK(slurp(dir / "scores.csv").rfind("score,label\n", 0) == 0);
+  std::ifstream in(scores);
+  std::size_t lines = 0;
+  for (std::string line; std::getline(in, line);) ++lines;
+  CHECK(lines == 3);  // the header and one score per row
+}
+
 TEST_CASE("bad input: range errors print their bound as a number, not 309 digits",
           "[bad_inputs][hbos_score][hbos_eval]") {
   const fs::path dir = scratch("range_messages");

@@ -4,6 +4,7 @@
 
 #include <hbos/model.hpp>
 #include <hbos/model_file.hpp>
+#include <hbos/pyod/model_file.hpp>
 #include <hbos/threshold.hpp>
 
 #include <algorithm>
@@ -496,4 +497,83 @@ TEST_CASE("hbos-score fit / score on a wide file: one feature at a time, bit for
                                              (dir / "wide_other.csv").string(), "--no-header"});
   CHECK(r.exit_code == 2);
   CHECK_THAT(r.err, Catch::Contains("fitted on 3000 features"));
+}
+
+TEST_CASE("hbos-score fit / score --mode pyod on a wide file: one feature at a time, bit for bit",
+          "[cli][hbos_score][streaming][pyod]") {
+  // 5 rows x 3000 columns: the PyOD-mode `fit` fits and writes one feature at a time
+  // (PyodModelFileWriter), `score` reads the model one feature at a time and sums each row's
+  // terms in numpy's pairwise order. The model file is save_model(PyodHbos::fit)'s, version 2;
+  // the scores and labels are the library's and those of `score` from standard input (blocks of
+  // rows, the model loaded whole).
+  const fs::path dir = work_dir();
+  const fs::path csv = dir / "wide_pyod.csv";
+  const Eigen::Index d = 3000;
+  {
+    std::ofstream out(csv);
+    for (int i = 0; i < 5; ++i) {
+      for (Eigen::Index j = 0; j < d; ++j)
+        out << (j > 0 ? "," : "") << (j % 13 == 4 ? 1.5 : std::cos(double(i * d + j)) * 7.0);
+      out << '\n';
+    }
+  }
+  hbos::cli::CsvOptions options;
+  options.header = hbos::cli::HeaderMode::Absent;
+  const hbos::cli::CsvTable table = hbos::cli::read_csv(csv.string(), options);
+  REQUIRE(table.features.cols() == d);
+  struct Case {
+    std::vector<std::string> args;
+    hbos::PyodParams params;
+  };
+  std::vector<Case> cases(3);
+  cases[1].args = {"--bins", "5", "--alpha", "0.05", "--tol", "0.3", "--contamination", "0.2"};
+  cases[1].params.n_bins = 5;
+  cases[1].params.alpha = 0.05;
+  cases[1].params.tol = 0.3;
+  cases[1].params.contamination = 0.2;
+  cases[2].args = {"--bins", "auto"};
+  cases[2].params.auto_bins = true;
+  for (std::size_t c = 0; c < cases.size(); ++c) {
+    INFO("case " << c);
+    const std::string model = (dir / ("wide_pyod_" + std::to_string(c) + ".hbos")).string();
+    std::vector<std::string> args = {"fit",  csv.string(), "--no-header", "--mode",
+                                     "pyod", "-o",         model};
+    args.insert(args.end(), cases[c].args.begin(), cases[c].args.end());
+    Run r = hbos_score("wide_pyod_fit", args);
+    INFO(r.err);
+    REQUIRE(r.exit_code == 0);
+    const hbos::PyodHbosd direct = hbos::PyodHbosd::fit(table.features, cases[c].params);
+    const std::string text = slurp(model);
+    CHECK(text.rfind("hbos-model-file 2\nkind pyod\n", 0) == 0);
+    CHECK(text == hbos::to_model_text(direct));
+    const std::string by_feature = (dir / "wide_pyod_scores_file.csv").string();
+    r = hbos_score("wide_pyod_score",
+                   {"score", model, csv.string(), "--no-header", "-o", by_feature});
+    REQUIRE(r.exit_code == 0);
+    const std::string by_rows = (dir / "wide_pyod_scores_stdin.csv").string();
+    r = hbos_score("wide_pyod_score_stdin", {"score", model, "-", "--no-header", "-o", by_rows},
+                   csv.string());
+    REQUIRE(r.exit_code == 0);
+    CHECK(slurp(by_feature) == slurp(by_rows));
+    const hbos::cli::CsvTable got = read_output(slurp(by_feature));
+    REQUIRE(got.rows() == 5);
+    CHECK(got.features.col(0) == direct.decision_function(table.features));
+    CHECK(got.features.col(1).cast<int>() == direct.predict(table.features));
+    // A version 1 file of the same model (written before 2026-12-03) scores the same bytes.
+    const std::string v1 = (dir / "wide_pyod_v1.hbos").string();
+    hbos::save_model(direct, v1, 1);
+    const std::string from_v1 = (dir / "wide_pyod_scores_v1.csv").string();
+    r = hbos_score("wide_pyod_score_v1", {"score", v1, csv.string(), "--no-header", "-o", from_v1});
+    REQUIRE(r.exit_code == 0);
+    CHECK(slurp(from_v1) == slurp(by_feature));
+  }
+  // A damaged feature line is refused naming the file, the line and the field.
+  std::string damaged = slurp(dir / "wide_pyod_0.hbos");
+  const std::size_t f = damaged.find("\nf 10 ") + 6;
+  damaged.insert(f, "x");
+  { std::ofstream(dir / "wide_pyod_damaged.hbos", std::ios::binary) << damaged; }
+  const Run r = hbos_score("wide_pyod_damaged", {"score", (dir / "wide_pyod_damaged.hbos").string(),
+                                                 csv.string(), "--no-header"});
+  CHECK(r.exit_code == 2);
+  CHECK_THAT(r.err, Catch::Contains("wide_pyod_damaged.hbos', line 10 (f.lo): 'x"));
 }

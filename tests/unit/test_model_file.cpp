@@ -15,6 +15,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <limits>
 #include <random>
 #include <sstream>
 #include <string>
@@ -155,10 +156,16 @@ void check_streamed(const Matrix<Scalar>& x, const hbos::HbosParams& params,
   std::filesystem::remove(path);
 }
 
-std::string temp_path(const std::string& name) {
-  const auto dir = std::filesystem::temp_directory_path() / "hbos_test_model_file";
+std::string temp_path(const std::string& name, const std::string& folder = "hbos_test_model_file") {
+  const auto dir = std::filesystem::temp_directory_path() / folder;
   std::filesystem::create_directories(dir);
   return (dir / name).string();
+}
+
+/// The PyOD-mode tests' files: a folder of their own, since the test above counts the files in
+/// its folder and ctest may run the tests at the same time.
+std::string pyod_temp_path(const std::string& name) {
+  return temp_path(name, "hbos_test_pyod_model_file");
 }
 
 /// The text of a small fitted model, to damage: version 1 unless `version` says 2.
@@ -471,6 +478,57 @@ void check_pyod_round_trip(const Eigen::MatrixXd& x, const Eigen::MatrixXd& x_te
     CHECK(model.bin_edges(j) == loaded.bin_edges(j));
   }
   CHECK(hbos::to_model_text(loaded) == text);
+  // Version 1 (the layout older releases read and wrote) round-trips to the same model too.
+  const std::string v1 = hbos::to_model_text(model, 1);
+  CHECK(v1.rfind("hbos-model-file 1\n", 0) == 0);
+  const auto loaded_v1 = hbos::pyod_hbos_from_model_text<Scalar>(v1);
+  CHECK(same_bits(model.decision_function(ts), loaded_v1.decision_function(ts)));
+  CHECK(hbos::to_model_text(loaded_v1, 1) == v1);
+  CHECK(hbos::to_model_text(loaded_v1) == text);
+}
+
+/// The feature-at-a-time writer fits and writes save_model's file, and the reader gives back the
+/// features load_pyod_hbos holds: scoring feature by feature gives decision_function's bits,
+/// from files of both versions. The columns are given strided (a row-major copy) and contiguous.
+template <class Scalar>
+void check_pyod_streamed(const Matrix<Scalar>& x, const Matrix<Scalar>& x_test,
+                         const hbos::PyodParams& params, const std::string& path) {
+  const auto model = hbos::PyodHbos<Scalar>::fit(x, params);
+  const Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> rows = x;
+  for (const bool strided : {true, false}) {
+    hbos::PyodModelFileWriter<Scalar> writer(path, params, x.cols(), x.rows());
+    for (Eigen::Index j = 0; j < x.cols(); ++j) {
+      if (strided) {
+        writer.add(rows.data() + j, rows.cols());
+      } else {
+        writer.add(x.col(j));
+      }
+    }
+    writer.commit();
+    std::ifstream in(path, std::ios::binary);
+    const std::string written((std::istreambuf_iterator<char>(in)),
+                              std::istreambuf_iterator<char>());
+    CHECK(written == hbos::to_model_text(model));
+  }
+  const auto expected = model.decision_function(x_test);
+  for (const int version : {2, 1}) {
+    if (version == 1) hbos::save_model(model, path, 1);
+    hbos::PyodModelFileReader<Scalar> reader(path);
+    CHECK(reader.version() == version);
+    CHECK(reader.n_features() == x.cols());
+    CHECK(reader.n_samples() == x.rows());
+    hbos::PyodFeatureScores<Scalar> scores(x_test.cols(), x_test.rows());
+    for (Eigen::Index j = 0; j < x_test.cols(); ++j) {
+      const hbos::PyodFeatureModel<Scalar> f = reader.next();
+      CHECK(f.bin_edges() == model.bin_edges(j));
+      CHECK(f.densities() == model.densities(j));
+      scores.add(f, x_test.col(j).data(), 1);
+    }
+    CHECK_NOTHROW(reader.finish());
+    CHECK(reader.threshold() == model.threshold());
+    CHECK(same_bits(scores.scores(), expected));
+  }
+  std::filesystem::remove(path);
 }
 
 }  // namespace
@@ -493,6 +551,95 @@ TEST_CASE("a loaded PyOD-mode model scores bit for bit like the saved one", "[mo
   }
 }
 
+TEST_CASE("numpy's pairwise sum fed one term at a time gives the same bits", "[model_file][pyod]") {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> mantissa(-1.0, 1.0);
+  std::uniform_int_distribution<int> exponent(-30, 30);
+  for (const Eigen::Index d :
+       {1, 2, 7, 8, 9, 15, 16, 17, 127, 128, 129, 130, 136, 255, 256, 257, 1000, 1031, 4099}) {
+    const Eigen::Index rows = 3;
+    std::vector<double> terms(static_cast<std::size_t>(d * rows));  // term k of row i at k*rows+i
+    for (double& t : terms) t = std::ldexp(mantissa(rng), exponent(rng));
+    hbos::detail::PairwiseRowSums sums(d, rows);
+    for (Eigen::Index k = 0; k < d; ++k) sums.add(terms.data() + k * rows);
+    for (Eigen::Index i = 0; i < rows; ++i) {
+      const double expected = hbos::detail::numpy_pairwise_sum(terms.data() + i, d, rows);
+      INFO("d = " << d << ", row " << i);
+      const double got = sums.sum(i);
+      CHECK(std::memcmp(&got, &expected, sizeof(double)) == 0);
+    }
+    CHECK_THROWS_WITH(sums.add(terms.data()), Catch::Contains("all"));
+  }
+  hbos::detail::PairwiseRowSums partial(10, 2);
+  const double two[2] = {1.0, 2.0};
+  partial.add(two);
+  CHECK_THROWS_WITH(partial.sum(0), Catch::Contains("1 of 10 terms"));
+}
+
+TEST_CASE("a PyOD-mode model written and read one feature at a time is the whole model's",
+          "[model_file][pyod]") {
+  const std::string path = pyod_temp_path("streamed.pyod");
+  for (const std::string name : {"cardio", "vertebral"}) {
+    const Eigen::MatrixXd x = read_csv(kPyodDir + name + "/X.csv");
+    const Eigen::MatrixXd x_test = read_csv(kPyodDir + name + "/X_test.csv");
+    hbos::PyodParams p;
+    for (const auto& [bins, alpha, tol] : std::vector<std::tuple<int, double, double>>{
+             {10, 0.1, 0.5}, {5, 0.1, 0.5}, {20, 0.01, 0.2}, {0, 0.1, 0.5}}) {
+      p.auto_bins = bins == 0;
+      p.n_bins = bins == 0 ? 10 : bins;
+      p.alpha = alpha;
+      p.tol = tol;
+      INFO(name << " n_bins " << bins);
+      check_pyod_streamed<double>(x, x_test, p, path);
+      check_pyod_streamed<float>(x.cast<float>(), x_test.cast<float>(), p, path);
+    }
+  }
+  // Wide: 6 rows of 700 features (numpy's sum splits the features in halves of multiples of 8),
+  // mixed shapes, constant features among them; more bins than PyOD's grid stores (2^16 + 1).
+  Eigen::MatrixXd wide(6, 700);
+  for (Eigen::Index j = 0; j < wide.cols(); ++j)
+    wide.col(j) = mixed_features<double>(static_cast<std::uint32_t>(j), 6, true).col(j % 5);
+  const Matrix<double> wide_test = make_queries(Matrix<double>(wide));
+  hbos::PyodParams p;
+  check_pyod_streamed<double>(wide, wide_test, p, path);
+  check_pyod_streamed<float>(wide.cast<float>(), wide_test.cast<float>(), p, path);
+  p.auto_bins = true;
+  check_pyod_streamed<double>(wide, wide_test, p, path);
+  p.auto_bins = false;
+  p.n_bins = 65537;
+  check_pyod_streamed<double>(wide.leftCols(9), wide_test.leftCols(9), p, path);
+}
+
+TEST_CASE("the PyOD-mode writer is atomic and refuses bad columns naming X(i, j)",
+          "[model_file][pyod]") {
+  const std::string path = pyod_temp_path("atomic.pyod");
+  { std::ofstream(path) << "previous\n"; }
+  Eigen::MatrixXd x = mixed_features<double>(3, 40);
+  x(7, 2) = std::numeric_limits<double>::quiet_NaN();
+  {
+    hbos::PyodModelFileWriter<double> writer(path, {}, x.cols(), x.rows());
+    writer.add(x.col(0));
+    writer.add(x.col(1));
+    CHECK_THROWS_WITH(writer.add(x.col(2)), Catch::Contains("X(7, 2) is not finite"));
+    CHECK_THROWS_WITH(writer.commit(), Catch::Contains("2 of 4 terms"));
+  }  // destroyed without commit: the old file stays, no temporary file is left
+  std::ifstream in(path);
+  std::string first;
+  std::getline(in, first);
+  CHECK(first == "previous");
+  std::size_t files = 0;
+  for (const auto& entry :
+       std::filesystem::directory_iterator(std::filesystem::path(path).parent_path())) {
+    files += entry.path().filename().string().find("atomic.pyod") != std::string::npos ? 1U : 0U;
+  }
+  CHECK(files == 1);
+  hbos::PyodModelFileWriter<double> writer(path, {}, 1, x.rows());
+  writer.add(x.col(0));
+  CHECK_THROWS_WITH(writer.add(x.col(1)), Catch::Contains("all 1 terms"));
+  CHECK_THROWS_WITH(writer.add(Eigen::VectorXd::Zero(3)), Catch::Contains("40 values expected"));
+  std::filesystem::remove(path);
+}
+
 TEST_CASE("a loaded PyOD-mode model still reproduces PyOD's test scores", "[model_file][pyod]") {
   const Eigen::MatrixXd x = read_csv(kPyodDir + "cardio/X.csv");
   const Eigen::MatrixXd x_test = read_csv(kPyodDir + "cardio/X_test.csv");
@@ -509,7 +656,9 @@ TEST_CASE("a loaded PyOD-mode model still reproduces PyOD's test scores", "[mode
 
 TEST_CASE("damaged PyOD-mode model files are refused naming the line and the field",
           "[model_file][pyod]") {
-  const std::string text = hbos::to_model_text(hbos::PyodHbosd::fit(mixed_features<double>(2, 60)));
+  // Version 1 (still read): its block of lines per feature.
+  const std::string text =
+      hbos::to_model_text(hbos::PyodHbosd::fit(mixed_features<double>(2, 60)), 1);
   REQUIRE_NOTHROW(hbos::pyod_hbos_from_model_text<double>(text));
   auto refused = [](const std::string& damaged, const std::vector<std::string>& parts) {
     try {
@@ -539,4 +688,85 @@ TEST_CASE("damaged PyOD-mode model files are refused naming the line and the fie
   std::string bad_score = text;
   bad_score.insert(scores_at, "x");
   refused(bad_score, {"decision_scores", "not a number"});
+}
+
+TEST_CASE("damaged version 2 PyOD-mode model files are refused naming the line and the field",
+          "[model_file][pyod]") {
+  const auto model = hbos::PyodHbosd::fit(mixed_features<double>(2, 60));
+  const std::string text = hbos::to_model_text(model);
+  REQUIRE(text.rfind("hbos-model-file 2\nkind pyod\n", 0) == 0);
+  REQUIRE_NOTHROW(hbos::pyod_hbos_from_model_text<double>(text));
+  const std::string path = pyod_temp_path("damaged_v2.pyod");
+  // Both loaders, whole and one feature at a time, refuse with the same message.
+  auto refused = [&](const std::string& damaged, const std::vector<std::string>& parts) {
+    std::vector<std::string> messages;
+    INFO(damaged.substr(0, 400));
+    try {
+      (void)hbos::pyod_hbos_from_model_text<double>(damaged, "model file '" + path + "'");
+      FAIL("load accepted a damaged model file");
+    } catch (const hbos::InvalidArgument& e) {
+      messages.emplace_back(e.what());
+    }
+    { std::ofstream(path, std::ios::binary) << damaged; }
+    try {
+      hbos::PyodModelFileReader<double> reader(path);
+      for (Eigen::Index j = 0; j < reader.n_features(); ++j) (void)reader.next();
+      reader.finish();
+      FAIL("the reader accepted a damaged model file");
+    } catch (const hbos::InvalidArgument& e) {
+      messages.emplace_back(e.what());
+    }
+    REQUIRE(messages.size() == 2);
+    CHECK(messages[0] == messages[1]);
+    for (const auto& part : parts) {
+      INFO(messages[0]);
+      CHECK(messages[0].find(part) != std::string::npos);
+    }
+  };
+  // Line 10 is feature 0: f <B> <e_0> <e_B> <counts>; its tokens changed one at a time.
+  const std::size_t f0 = text.find("\nf ") + 1;
+  const std::string line10 = text.substr(f0, text.find('\n', f0) - f0);
+  auto with_line10 = [&](const std::string& replacement) {
+    return text.substr(0, f0) + replacement + text.substr(f0 + line10.size());
+  };
+  std::vector<std::string> tokens;
+  {
+    std::istringstream split(line10.substr(2));
+    for (std::string t; split >> t;) tokens.push_back(t);
+  }
+  REQUIRE(tokens.size() == 13);
+  auto changed = [&](std::size_t i, const std::string& value) {
+    std::string line = "f";
+    for (std::size_t k = 0; k < tokens.size(); ++k) line += " " + (k == i ? value : tokens[k]);
+    return with_line10(line);
+  };
+  refused(with_line10("f 0 1 2 3"), {"line 10 (f.bins)", "bin count 0"});
+  refused(with_line10("f 10 1 2"), {"line 10 (f)", "expected at least 4 values, got 3"});
+  refused(with_line10("f 10 1 2 3"), {"line 10 (f)", "expected 13 values for 10 bins, got 4"});
+  refused(changed(0, "9"), {"line 10 (f)", "expected 12 values for 9 bins, got 13"});
+  refused(changed(1, "1x"), {"line 10 (f.lo)", "'1x' is not a number"});
+  refused(changed(2, tokens[1]), {"line 10 (f.hi)", "is empty"});
+  std::string overflowing = "f 10 -1e308 1e308";
+  for (std::size_t k = 3; k < tokens.size(); ++k) overflowing += " " + tokens[k];
+  refused(with_line10(overflowing), {"line 10 (f.hi)", "feature 0", "overflows a double"});
+  refused(changed(3, std::to_string(std::stoll(tokens[3]) - 1)),
+          {"line 10 (f)", "feature 0", "add up to 59"});
+  refused(changed(4, "-1"), {"line 10 (f)", "counts[1] = -1"});
+  refused(changed(12, "nan"), {"line 10 (f.counts)", "'nan' is not a whole number"});
+  refused(replace_line(text, "n_bins", "n_bins 2"), {"line 6 (n_bins)", "n_bins must be > 2"});
+  // The threshold comes last in version 2.
+  const std::size_t last = text.find("\nthreshold ");
+  REQUIRE(last != std::string::npos);
+  const auto threshold_line = static_cast<std::size_t>(std::count(
+                                  text.begin(), text.begin() + static_cast<long>(last) + 1, '\n')) +
+                              1;
+  refused(replace_line(text, "threshold", "threshold 99"),
+          {"line " + std::to_string(threshold_line) + " (threshold)", "percentile"});
+  refused(replace_line(text, "decision_scores", "decision_scores 59"),
+          {"(decision_scores)", "59 scores for n_samples = 60"});
+  refused(text.substr(0, last + 1), {"ends after line", "'threshold' was expected"});
+  refused(text + "f 1 0 1 60\n", {"(end of file)", "unexpected content"});
+  refused("hbos-model-file 3" + text.substr(text.find('\n')),
+          {"line 1 (hbos-model-file)", "unsupported format version 3"});
+  std::filesystem::remove(path);
 }

@@ -21,9 +21,8 @@
 
 namespace hbos {
 
-/// The version of the model file format this library writes for the default model (Hbos). It
-/// reads versions 1 and 2; PyOD-mode files (PyodHbos) are written and read as version 1, whose
-/// layout for them version 2 keeps.
+/// The version of the model file format this library writes, for the default model (Hbos) and
+/// the PyOD mode (PyodHbos) alike. It reads versions 1 and 2 of both.
 inline constexpr int kModelFileVersion = 2;
 
 /// What a model file holds, from its first three lines.

@@ -180,6 +180,8 @@ void require_finite_entry(const StridedView<Scalar>& X, const char* what) {
 
 template <class Scalar>
 class PyodHistograms;  // hbos/pyod/merge.hpp: the histograms of a sharded fit
+template <class Scalar>
+class PyodFeatureModel;  // one feature on its own (below)
 
 /// HBOS exactly as PyOD 3.6.5 computes it (the maths is in this file's header comment), as an
 /// immutable fitted model.
@@ -299,6 +301,35 @@ class PyodHbos {
   }
   [[nodiscard]] const PyodParams& params() const { return params_; }
 
+  /// Assembles a model from its features, each fitted or rebuilt on its own (PyodFeatureModel,
+  /// feature j at index j), and the training scores: the model those features and scores came
+  /// from, bit for bit. The threshold and labels are recomputed from the scores.
+  /// \throws InvalidArgument on a feature out of order, a feature of other parameters, or a
+  /// training score that is not finite.
+  [[nodiscard]] static PyodHbos from_features(std::vector<PyodFeatureModel<Scalar>> features,
+                                              const PyodParams& params, Vector training_scores) {
+    detail::validate(params);
+    const Eigen::Index n = training_scores.size();
+    detail::require(!features.empty() && n >= 1 && (!params.auto_bins || n > 3), "a model of ",
+                    features.size(), " features and ", n, " training samples is not one PyOD fits");
+    for (Eigen::Index i = 0; i < n; ++i)
+      detail::require(std::isfinite(training_scores[i]), "training score ", i, " is not finite (",
+                      training_scores[i], ")");
+    PyodHbos model;
+    model.params_ = params;
+    model.features_.reserve(features.size());
+    for (std::size_t j = 0; j < features.size(); ++j) {
+      PyodFeatureModel<Scalar>& f = features[j];
+      detail::require(f.index() == static_cast<Eigen::Index>(j), "feature ", f.index(),
+                      " given at index ", j);
+      detail::require(params.auto_bins || f.bins() == params.n_bins, "feature ", j, ": ", f.bins(),
+                      " bins but n_bins = ", params.n_bins);
+      model.features_.push_back(std::move(f.f_));
+    }
+    model.set_training_outputs(std::move(training_scores));
+    return model;
+  }
+
   /// Assembles a fitted model from what a model file stores (hbos/pyod/model_file.hpp): per
   /// feature its B_j + 1 edges and B_j counts, the parameters and the training scores. Each
   /// feature is refitted on a column holding counts[k] copies of edges[k] with the range
@@ -321,43 +352,14 @@ class PyodHbos {
                       training_scores[i], ")");
     PyodHbos model;
     model.params_ = params;
-    std::vector<Scalar> column(static_cast<std::size_t>(n));
-    std::vector<std::uint16_t> scored_bins(static_cast<std::size_t>(n));
+    std::vector<Scalar> column;
+    std::vector<std::uint16_t> scored_bins;
     for (Eigen::Index j = 0; j < d; ++j) {
-      const Eigen::VectorXd& e = edges[static_cast<std::size_t>(j)];
-      const Counts& c = counts[static_cast<std::size_t>(j)];
-      const Eigen::Index B = c.size();
-      detail::require(B >= 1 && e.size() == B + 1, "feature ", j, ": ", e.size(), " edges for ", B,
-                      " bins");
-      detail::require(params.auto_bins || B == params.n_bins, "feature ", j, ": ", B,
-                      " bins but n_bins = ", params.n_bins);
-      detail::require(e.allFinite(), "feature ", j, ": an edge is not finite");
-      Eigen::Index filled = 0;
-      for (Eigen::Index k = 0; k < B; ++k) {
-        detail::require(c[k] >= 0 && c[k] <= n - filled, "feature ", j, ": counts[", k,
-                        "] = ", c[k], " is negative or exceeds the ", n, " training samples");
-        // The smallest Scalar >= e_k: in bin k whenever bin k holds a Scalar training value.
-        auto value = static_cast<Scalar>(e[k]);
-        if (static_cast<double>(value) < e[k])
-          value = std::nextafter(value, std::numeric_limits<Scalar>::infinity());
-        std::fill_n(column.begin() + filled, c[k], value);
-        filled += c[k];
-      }
-      detail::require(filled == n, "feature ", j, ": the counts add up to ", filled,
-                      ", not to the ", n, " training samples");
-      Feature f = fit_feature(column.data(), 1, n, j, B, e[0], e[B], params, scored_bins.data());
-      detail::require(f.edges == e, "feature ", j,
-                      ": the edges are not numpy's edges of their range [", e[0], ", ", e[B], "]");
-      detail::require(f.counts == c, "feature ", j,
-                      ": the counts do not match the edges (a value placed at edges[k] is not ",
-                      "counted in bin k)");
-      model.features_.push_back(std::move(f));
+      model.features_.push_back(feature_from_parts(edges[static_cast<std::size_t>(j)],
+                                                   counts[static_cast<std::size_t>(j)], n, j,
+                                                   params, column, scored_bins));
     }
-    std::vector<Scalar> percentile_scratch;
-    model.threshold_ =
-        detail::pyod_threshold(training_scores.data(), n, params.contamination, percentile_scratch);
-    model.scores_ = std::move(training_scores);
-    model.labels_ = model.label(model.scores_);
+    model.set_training_outputs(std::move(training_scores));
     return model;
   }
 
@@ -427,9 +429,21 @@ class PyodHbos {
 
   PyodHbos() = default;
 
+  /// decision_scores, then PyOD's threshold of them and the labels.
+  void set_training_outputs(Vector training_scores) {
+    std::vector<Scalar> percentile_scratch;
+    threshold_ = detail::pyod_threshold(training_scores.data(), training_scores.size(),
+                                        params_.contamination, percentile_scratch);
+    scores_ = std::move(training_scores);
+    labels_ = label(scores_);
+  }
+
   // The sharded fit (hbos/pyod/merge.hpp) builds models from merged counts.
   template <class>
   friend class PyodHistograms;
+  // One feature on its own, for models too wide to hold whole.
+  template <class>
+  friend class PyodFeatureModel;
 
   /// The histograms of n samples from each feature's numpy edges (detail::pyod_bin_edges) and
   /// counts, through the code fit uses, with no training outputs yet (set_training_scores).
@@ -506,25 +520,9 @@ class PyodHbos {
     bool bins_stored = true;
     detail::AutoBinsScratch<Scalar> scratch;
     for (Eigen::Index j = 0; j < X.cols; ++j) {
-      const Scalar* column = X.data + j * X.col_stride;
-      const auto [lo, hi] = column_range(column, X.row_stride, n);
-      // An infinity shows in min/max; a NaN is caught by the counting pass, but the auto search
-      // must not see one, so it looks first.
-      bool finite = std::isfinite(lo) && std::isfinite(hi);
-      if (finite && params.auto_bins) {
-        Eigen::Index nans = 0;
-        for (Eigen::Index i = 0; i < n; ++i) nans += std::isnan(column[i * X.row_stride]) ? 1 : 0;
-        finite = nans == 0;
-      }
-      if (!finite) detail::require_finite_entry(X, "X");
-      // Checked before the auto search too, which would bucket an infinite range.
-      require_finite_range(j, lo, hi);
-      const Eigen::Index B =
-          params.auto_bins ? detail::pyod_optimal_bins(column, X.row_stride, n, lo, hi, scratch)
-                           : params.n_bins;
-      bins_stored = bins_stored && B <= kMaxStoredBins;
-      model.features_.push_back(
-          fit_feature(column, X.row_stride, n, j, B, lo, hi, params, scored_bins.get() + j * n));
+      model.features_.push_back(fit_column(X.data + j * X.col_stride, X.row_stride, n, j, params,
+                                           scored_bins.get() + j * n, scratch));
+      bins_stored = bins_stored && model.features_.back().bins() <= kMaxStoredBins;
     }
     if (!bins_stored) {
       model.scores_ = model.score_view(X);
@@ -553,6 +551,107 @@ class PyodHbos {
   }
 
   static constexpr Eigen::Index kMaxStoredBins = 65536;
+
+  /// Feature j fitted on its n values (`stride` apart), as fit_view fits column j: its range,
+  /// checked finite (a non-finite value named as X(i, j): the columns before j passed, so it is
+  /// also the first one of X), its bin count, numpy's histogram. Writes the bins the values are
+  /// scored with (see fit_feature).
+  [[nodiscard]] static Feature fit_column(const Scalar* column, Eigen::Index stride, Eigen::Index n,
+                                          Eigen::Index j, const PyodParams& params,
+                                          std::uint16_t* scored_bins,
+                                          detail::AutoBinsScratch<Scalar>& scratch) {
+    const auto [lo, hi] = column_range(column, stride, n);
+    // An infinity shows in min/max; a NaN is caught by the counting pass, but the auto search
+    // must not see one, so it looks first.
+    bool finite = std::isfinite(lo) && std::isfinite(hi);
+    if (finite && params.auto_bins) {
+      Eigen::Index nans = 0;
+      for (Eigen::Index i = 0; i < n; ++i) nans += std::isnan(column[i * stride]) ? 1 : 0;
+      finite = nans == 0;
+    }
+    if (!finite) {
+      for (Eigen::Index i = 0; i < n; ++i) {
+        detail::require(std::isfinite(column[i * stride]), "X(", i, ", ", j,
+                        ") is not finite: ", column[i * stride]);
+      }
+    }
+    // Checked before the auto search too, which would bucket an infinite range.
+    require_finite_range(j, lo, hi);
+    const Eigen::Index B = params.auto_bins
+                               ? detail::pyod_optimal_bins(column, stride, n, lo, hi, scratch)
+                               : params.n_bins;
+    return fit_feature(column, stride, n, j, B, lo, hi, params, scored_bins);
+  }
+
+  /// Feature j rebuilt from its stored edges and counts of n samples (see from_parts).
+  /// `column` and `scored_bins` are scratch (resized to n).
+  [[nodiscard]] static Feature feature_from_parts(const Eigen::VectorXd& e, const Counts& c,
+                                                  Eigen::Index n, Eigen::Index j,
+                                                  const PyodParams& params,
+                                                  std::vector<Scalar>& column,
+                                                  std::vector<std::uint16_t>& scored_bins) {
+    column.resize(static_cast<std::size_t>(n));
+    scored_bins.resize(static_cast<std::size_t>(n));
+    const Eigen::Index B = c.size();
+    detail::require(B >= 1 && e.size() == B + 1, "feature ", j, ": ", e.size(), " edges for ", B,
+                    " bins");
+    detail::require(params.auto_bins || B == params.n_bins, "feature ", j, ": ", B,
+                    " bins but n_bins = ", params.n_bins);
+    detail::require(e.allFinite(), "feature ", j, ": an edge is not finite");
+    Eigen::Index filled = 0;
+    for (Eigen::Index k = 0; k < B; ++k) {
+      detail::require(c[k] >= 0 && c[k] <= n - filled, "feature ", j, ": counts[", k, "] = ", c[k],
+                      " is negative or exceeds the ", n, " training samples");
+      // The smallest Scalar >= e_k: in bin k whenever bin k holds a Scalar training value.
+      auto value = static_cast<Scalar>(e[k]);
+      if (static_cast<double>(value) < e[k])
+        value = std::nextafter(value, std::numeric_limits<Scalar>::infinity());
+      std::fill_n(column.begin() + filled, c[k], value);
+      filled += c[k];
+    }
+    detail::require(filled == n, "feature ", j, ": the counts add up to ", filled, ", not to the ",
+                    n, " training samples");
+    Feature f = fit_feature(column.data(), 1, n, j, B, e[0], e[B], params, scored_bins.data());
+    detail::require(f.edges == e, "feature ", j,
+                    ": the edges are not numpy's edges of their range [", e[0], ", ", e[B], "]");
+    detail::require(f.counts == c, "feature ", j,
+                    ": the counts do not match the edges (a value placed at edges[k] is not ",
+                    "counted in bin k)");
+    return f;
+  }
+
+  /// Writes (kAdd false) or adds (true) to dst[r] the log term of x[r * stride] under feature f,
+  /// for r < m (see Feature for the look-up); returns how many of the values are not finite.
+  template <bool kAdd>
+  static Eigen::Index feature_terms(const Feature& f, const Scalar* x, Eigen::Index stride,
+                                    Eigen::Index m, double* dst) {
+    // Locals, so that the stores to dst cannot force reloads.
+    const double lo = f.lo;
+    const double hi = f.hi;
+    const double scale = f.cell_scale;
+    const Cell* grid = f.grid.data();
+    return detail::with_stride(stride, [&](auto step) {
+      Eigen::Index bad = 0;
+      for (Eigen::Index r = 0; r < m; ++r) {
+        const double v = static_cast<double>(x[r * step]);
+        double t;
+        if (v >= lo && v <= hi) {
+          const Cell& cell = grid[static_cast<Eigen::Index>((v - lo) * scale)];
+          t = v <= cell.edge ? cell.below : cell.above;
+          if (std::isnan(t)) t = f.term_exact(v);
+        } else {
+          bad += std::isfinite(v) ? 0 : 1;
+          t = f.term_exact(v);
+        }
+        if constexpr (kAdd) {
+          dst[r] += t;
+        } else {
+          dst[r] = t;
+        }
+      }
+      return bad;
+    });
+  }
 
   /// detail::pyod_histogram_range (numpy's range of feature j, refused if it overflows).
   static detail::OuterEdges require_finite_range(Eigen::Index j, double min_value,
@@ -744,32 +843,7 @@ class PyodHbos {
         [&](Eigen::Index j, Eigen::Index first, Eigen::Index m, double* dst, auto add) {
           const Feature& f = features_[static_cast<std::size_t>(j)];
           const Scalar* x = X.data + first * X.row_stride + j * X.col_stride;
-          // Locals, so that the stores to dst cannot force reloads.
-          const double lo = f.lo;
-          const double hi = f.hi;
-          const double scale = f.cell_scale;
-          const Cell* grid = f.grid.data();
-          non_finite += detail::with_stride(X.row_stride, [&](auto stride) {
-            Eigen::Index bad = 0;
-            for (Eigen::Index r = 0; r < m; ++r) {
-              const double v = static_cast<double>(x[r * stride]);
-              double t;
-              if (v >= lo && v <= hi) {
-                const Cell& cell = grid[static_cast<Eigen::Index>((v - lo) * scale)];
-                t = v <= cell.edge ? cell.below : cell.above;
-                if (std::isnan(t)) t = f.term_exact(v);
-              } else {
-                bad += std::isfinite(v) ? 0 : 1;
-                t = f.term_exact(v);
-              }
-              if constexpr (decltype(add)::value) {
-                dst[r] += t;
-              } else {
-                dst[r] = t;
-              }
-            }
-            return bad;
-          });
+          non_finite += feature_terms<decltype(add)::value>(f, x, X.row_stride, m, dst);
         },
         scores.data());
     if (non_finite > 0) detail::require_finite_entry(X, "X");
@@ -790,6 +864,145 @@ class PyodHbos {
   Vector scores_;
   Scalar threshold_{};
   Labels labels_;
+};
+
+/// One feature of a PyOD-mode model on its own, for models too wide to hold whole (a PyodHbos
+/// keeps a look-up grid of at least 1024 cells, 24 KB, per feature): what PyodModelFileWriter
+/// fits and writes per feature and PyodModelFileReader gives back (hbos/pyod/model_file.hpp).
+///
+/// Its edges, counts and densities are those PyodHbos::fit gives feature j of the same data, and
+/// log_terms() gives per value the term decision_function adds up (negated) for feature j, in
+/// double, before numpy's sum over features (PyodFeatureScores adds them in that order).
+///
+/// Threading: immutable once built; const members may be called from many threads.
+template <class Scalar>
+class PyodFeatureModel {
+ public:
+  using Counts = typename PyodHbos<Scalar>::Counts;  ///< samples per bin
+
+  /// Fits feature `j` on its `n` training values, `stride` apart, as PyodHbos::fit fits column j
+  /// (errors name X(i, j)). Writes to `terms` the n training values' log terms (what
+  /// decision_scores() adds up for feature j).
+  /// \throws InvalidArgument for invalid params or data, as PyodHbos::fit.
+  [[nodiscard]] static PyodFeatureModel fit(const Scalar* column, Eigen::Index stride,
+                                            Eigen::Index n, Eigen::Index j,
+                                            const PyodParams& params, double* terms) {
+    detail::validate(params);
+    detail::require(n >= 1, "cannot fit on an empty matrix (", n, " x 1)");
+    detail::require(!params.auto_bins || n > 3,
+                    "n_bins = auto needs more than 3 samples (PyOD searches b = 1 .. sqrt(n) - 1), "
+                    "got ",
+                    n);
+    std::vector<std::uint16_t> scored_bins(static_cast<std::size_t>(n));
+    detail::AutoBinsScratch<Scalar> scratch;
+    PyodFeatureModel out;
+    out.j_ = j;
+    out.f_ = Model::fit_column(column, stride, n, j, params, scored_bins.data(), scratch);
+    // As PyodHbos::fit: the scored bins of the counting pass, or beyond 65536 bins the values
+    // scored like new data (the same terms, by the model's invariant).
+    if (out.f_.bins() <= Model::kMaxStoredBins) {
+      const double* log_terms = out.f_.log_terms.data();
+      for (Eigen::Index i = 0; i < n; ++i)
+        terms[i] = log_terms[scored_bins[static_cast<std::size_t>(i)]];
+    } else {
+      out.log_terms(column, stride, n, terms);
+    }
+    return out;
+  }
+
+  /// Feature `j` of a model fitted on `n` samples, from its stored B + 1 edges and B counts,
+  /// checked and rebuilt as PyodHbos::from_parts does.
+  /// \throws InvalidArgument naming the feature when the parts are inconsistent.
+  [[nodiscard]] static PyodFeatureModel from_parts(const Eigen::VectorXd& edges,
+                                                   const Counts& counts, Eigen::Index n,
+                                                   Eigen::Index j, const PyodParams& params) {
+    detail::validate(params);
+    detail::require(n >= 1 && (!params.auto_bins || n > 3), "a model of ", n,
+                    " training samples is not one PyOD fits");
+    std::vector<Scalar> column;
+    std::vector<std::uint16_t> scored_bins;
+    PyodFeatureModel out;
+    out.j_ = j;
+    out.f_ = Model::feature_from_parts(edges, counts, n, j, params, column, scored_bins);
+    return out;
+  }
+
+  /// The feature's index j in its model.
+  [[nodiscard]] Eigen::Index index() const { return j_; }
+  /// Bin count B.
+  [[nodiscard]] Eigen::Index bins() const { return f_.bins(); }
+  /// PyOD's `bin_edges_[:, j]` (B + 1 values).
+  [[nodiscard]] const Eigen::VectorXd& bin_edges() const { return f_.edges; }
+  /// numpy.histogram's B training counts.
+  [[nodiscard]] const Counts& counts() const { return f_.counts; }
+  /// PyOD's `hist_[:, j]` (B densities).
+  [[nodiscard]] const Eigen::VectorXd& densities() const { return f_.densities; }
+
+  /// out[i] = the log term of x[i * stride] (i < m): log2(density + alpha) of the bin PyOD scores
+  /// it with. \throws InvalidArgument naming X(i, j) for a value that is not finite.
+  void log_terms(const Scalar* x, Eigen::Index stride, Eigen::Index m, double* out) const {
+    if (Model::template feature_terms<false>(f_, x, stride, m, out) > 0) {
+      for (Eigen::Index i = 0; i < m; ++i)
+        detail::require(std::isfinite(x[i * stride]), "X(", i, ", ", j_,
+                        ") is not finite: ", x[i * stride]);
+    }
+  }
+
+ private:
+  using Model = PyodHbos<Scalar>;
+  friend class PyodHbos<Scalar>;  // from_features takes the feature
+  PyodFeatureModel() = default;
+
+  typename Model::Feature f_;
+  Eigen::Index j_ = 0;
+};
+
+/// PyodHbos::decision_function built one feature at a time: each feature's log terms for every
+/// row are added in feature order with numpy's pairwise summation (detail::PairwiseRowSums), so
+/// scores() is bit for bit what the whole model gives, holding about 10 doubles per row and
+/// nothing per feature.
+template <class Scalar>
+class PyodFeatureScores {
+ public:
+  using Vector = typename PyodHbos<Scalar>::Vector;
+
+  /// Scores of `rows` rows (>= 1) under a model of `n_features` features.
+  PyodFeatureScores(Eigen::Index n_features, Eigen::Index rows)
+      : sums_(checked(n_features, rows), rows), terms_(static_cast<std::size_t>(rows)) {}
+
+  [[nodiscard]] Eigen::Index rows() const { return sums_.rows(); }
+  /// Features added so far.
+  [[nodiscard]] Eigen::Index features_added() const { return sums_.added(); }
+
+  /// Adds the next feature, scoring its column of rows() values, `stride` apart.
+  /// \throws InvalidArgument naming X(i, j) for a value that is not finite.
+  void add(const PyodFeatureModel<Scalar>& feature, const Scalar* column, Eigen::Index stride) {
+    detail::require(feature.index() == features_added(), "feature ", feature.index(),
+                    " added where feature ", features_added(), " was due");
+    feature.log_terms(column, stride, rows(), terms_.data());
+    sums_.add(terms_.data());
+  }
+
+  /// Adds the next feature's log terms, rows() values (PyodFeatureModel::fit's training terms).
+  void add_terms(const double* terms) { sums_.add(terms); }
+
+  /// The scores, once every feature has been added: decision_function's bits.
+  /// \throws InvalidArgument when features are missing.
+  [[nodiscard]] Vector scores() const {
+    Vector out(rows());
+    for (Eigen::Index i = 0; i < rows(); ++i) out[i] = static_cast<Scalar>(-sums_.sum(i));
+    return out;
+  }
+
+ private:
+  static Eigen::Index checked(Eigen::Index n_features, Eigen::Index rows) {
+    detail::require(n_features >= 1 && rows >= 1, "cannot score ", rows, " rows of ", n_features,
+                    " features");
+    return n_features;
+  }
+
+  detail::PairwiseRowSums sums_;
+  std::vector<double> terms_;
 };
 
 using PyodHbosd = PyodHbos<double>;  ///< the double model (PyOD parity is defined for double)

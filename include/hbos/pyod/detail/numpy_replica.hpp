@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "hbos/detail/numpy.hpp"  // detail::mul_rounded
+#include "hbos/error.hpp"
 
 namespace hbos::detail {
 
@@ -122,6 +123,103 @@ inline void numpy_histogram_edges(const OuterEdges& range, Eigen::Index bins, do
   n2 -= n2 % 8;
   return numpy_pairwise_sum(a, n2, stride) + numpy_pairwise_sum(a + n2 * stride, n - n2, stride);
 }
+
+/// numpy_pairwise_sum of d terms per row for many rows, the terms given one index at a time
+/// (term k of every row, then term k + 1): the same bits as numpy_pairwise_sum over each row's d
+/// terms, without holding them. The recursion's shape depends on d only, so its leaves (runs of
+/// at most 128 terms) are summed as the terms arrive, with numpy's eight partial sums, and each
+/// finished leaf is pushed on a stack whose top two are added whenever a split closes. Memory per
+/// row: nine partial sums and one per level of the split (about log2(d / 64)).
+class PairwiseRowSums {
+ public:
+  /// Sums of `terms` terms (>= 1) for each of `rows` rows.
+  PairwiseRowSums(Eigen::Index terms, Eigen::Index rows) : terms_(terms), rows_(rows) {
+    plan(terms);
+    partial_.assign(static_cast<std::size_t>(rows * 9), 0.0);
+  }
+
+  [[nodiscard]] Eigen::Index rows() const { return rows_; }
+  /// Terms added per row so far.
+  [[nodiscard]] Eigen::Index added() const { return added_; }
+
+  /// Adds the next term of every row: t[i] for row i.
+  void add(const double* t) {
+    require(added_ < terms_, "pairwise sums: all ", terms_, " terms were added");
+    const Leaf& leaf = leaves_[leaf_];
+    const Eigen::Index s = leaf.size;
+    const Eigen::Index k = in_leaf_;
+    const auto n = static_cast<std::size_t>(rows_);
+    double* res = partial_.data() + 8 * n;  // r[0..7] of row i at partial_[q * n + i]
+    if (s < 8) {
+      if (k == 0) std::fill_n(res, n, 0.0);
+      for (std::size_t i = 0; i < n; ++i) res[i] += t[i];
+    } else if (k < 8) {
+      std::copy_n(t, n, partial_.data() + static_cast<std::size_t>(k) * n);
+    } else if (k < s - s % 8) {
+      double* r = partial_.data() + static_cast<std::size_t>(k % 8) * n;
+      for (std::size_t i = 0; i < n; ++i) r[i] += t[i];
+    } else {
+      if (k == s - s % 8) combine(res);
+      for (std::size_t i = 0; i < n; ++i) res[i] += t[i];
+    }
+    ++added_;
+    if (++in_leaf_ < s) return;
+    if (s >= 8 && s % 8 == 0) combine(res);
+    stack_.insert(stack_.end(), res, res + n);
+    for (int a = 0; a < leaf.merges; ++a) {
+      // right = top, left = below it: left + right, as numpy returns it.
+      double* right = stack_.data() + stack_.size() - n;
+      double* left = right - n;
+      for (std::size_t i = 0; i < n; ++i) left[i] += right[i];
+      stack_.resize(stack_.size() - n);
+    }
+    ++leaf_;
+    in_leaf_ = 0;
+  }
+
+  /// The sums, once every term has been added: sum(i) of row i.
+  [[nodiscard]] double sum(Eigen::Index i) const {
+    require(added_ == terms_, "pairwise sums: ", added_, " of ", terms_, " terms added");
+    return stack_[static_cast<std::size_t>(i)];
+  }
+
+ private:
+  struct Leaf {
+    Eigen::Index size;  // terms in this leaf
+    int merges;         // splits that close after it
+  };
+
+  // The leaves of numpy_pairwise_sum(n) in order (post-order: a split's merge follows its
+  // right half's last leaf).
+  void plan(Eigen::Index n) {
+    if (n <= 128) {
+      leaves_.push_back({n, 0});
+      return;
+    }
+    Eigen::Index n2 = n / 2;
+    n2 -= n2 % 8;
+    plan(n2);
+    plan(n - n2);
+    ++leaves_.back().merges;
+  }
+
+  // res = numpy's combination of the eight partial sums.
+  void combine(double* res) const {
+    const auto n = static_cast<std::size_t>(rows_);
+    const double* r = partial_.data();
+    for (std::size_t i = 0; i < n; ++i) {
+      res[i] = ((r[i] + r[n + i]) + (r[2 * n + i] + r[3 * n + i])) +
+               ((r[4 * n + i] + r[5 * n + i]) + (r[6 * n + i] + r[7 * n + i]));
+    }
+  }
+
+  Eigen::Index terms_, rows_;
+  std::vector<Leaf> leaves_;
+  std::vector<double> partial_;  // 8 partial sums and the leaf's running sum, per row
+  std::vector<double> stack_;    // finished halves, rows_ values each
+  std::size_t leaf_ = 0;
+  Eigen::Index in_leaf_ = 0, added_ = 0;
+};
 
 // ---- exact order statistics without sorting ----------------------------------------------------
 
