@@ -228,8 +228,10 @@ class Parser {
     }
     if (!header) layout_.numeric_header_cells.clear();
     layout_.has_header = header;
-    layout_.column_names.resize(n_columns);
-    {
+    const bool names = header || options_.default_names || !options_.label_column.empty() ||
+                       !options_.ignore_columns.empty();
+    if (names) {
+      layout_.column_names.resize(n_columns);
       CellCursor cells(line, options_.delimiter, source_, line_no_);
       Cell cell;
       for (std::size_t j = 0; j < n_columns && cells.next(cell); ++j) {
@@ -322,7 +324,9 @@ class Parser {
 
   /// "field 3, \"x2\"": which cell, for messages.
   std::string where(std::size_t j) const {
-    return "field " + std::to_string(j + 1) + ", \"" + layout_.column_names[j] + "\"";
+    const std::string name =
+        layout_.column_names.empty() ? "x" + std::to_string(j) : layout_.column_names[j];
+    return "field " + std::to_string(j + 1) + ", \"" + name + "\"";
   }
 
   [[noreturn]] void fail_cell(const Cell& cell, std::size_t j, NumberStatus status) const {

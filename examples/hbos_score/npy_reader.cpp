@@ -156,13 +156,15 @@ bool is_npy_path(const std::string& path) {
 
 DataMatrix read_data(const std::string& path, const CsvOptions& csv) {
   if (is_npy_path(path)) return std::move(read_npy(path).values);
-  // Rows go into a RowStore as they are parsed; the layout (column names: 32 bytes and more a
-  // column) stays the parser's and is not copied.
+  // Rows go into a RowStore as they are parsed; the layout stays the parser's, not copied, and
+  // holds no made-up names for a file without a header (32 bytes a column).
   RowStore values;
+  CsvOptions options = csv;
+  options.default_names = false;
   CsvHandlers handlers;
   handlers.on_layout = [&](const CsvLayout& layout) { values = RowStore(layout.n_features()); };
   handlers.on_row = [&](const CsvRow& row) { values.append(row.features); };
-  read_csv_rows(path, csv, handlers);
+  read_csv_rows(path, options, handlers);
   return DataMatrix(std::move(values), false);
 }
 

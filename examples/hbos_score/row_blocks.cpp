@@ -16,6 +16,8 @@ Eigen::Index rows_per_block(Eigen::Index features) {
 
 Eigen::Index csv_feature_count(const std::string& path, const CsvOptions& csv) {
   struct Stop {};  // thrown once the layout is known: the rest of the file is not read
+  CsvOptions options = csv;
+  options.default_names = false;  // the count is all that is needed
   Eigen::Index d = 0;
   CsvHandlers handlers;
   handlers.on_layout = [&](const CsvLayout& layout) {
@@ -24,7 +26,7 @@ Eigen::Index csv_feature_count(const std::string& path, const CsvOptions& csv) {
   };
   handlers.on_row = [](const CsvRow&) {};
   try {
-    read_csv_rows(path, csv, handlers);
+    read_csv_rows(path, options, handlers);
   } catch (const Stop&) {
   }
   return d;
@@ -66,7 +68,9 @@ void for_each_row_block(const std::string& path, const CsvOptions& csv,
     std::copy(row.features, row.features + d, buffer.begin() + filled * d);
     if (++filled == capacity) flush();
   };
-  read_csv_rows(path, csv, handlers);
+  CsvOptions options = csv;
+  options.default_names = false;  // blocks of values: no names needed
+  read_csv_rows(path, options, handlers);
   flush();
 }
 
