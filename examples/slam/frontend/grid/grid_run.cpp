@@ -10,6 +10,7 @@
 
 #include <fmt/format.h>
 #include <hbos/error.hpp>
+#include <hbos/version.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -21,17 +22,19 @@ namespace hbos::slam {
 
 namespace {
 
-/// Everything a run's result depends on besides the code: a cached run is reused only when this
-/// matches.
+/// Everything a run's result depends on: a cached run is reused only when this matches. The
+/// library's version stands for the code (a release that changes a screen's decisions bumps it),
+/// as in hbos-dynbench's cell keys.
 std::string grid_run_settings(const Config& c, const PersonVariant& v, int frames) {
   return fmt::format(
       "dataset={} frames={} camera={} tracker={} person={} depth={} speed={} start={} mask={} "
       "screen={} rounds={} mask_evidence={} track_history={} forgetting={} rough={} ransac_px={} "
-      "features={}",
+      "features={} hbos={}.{}.{}",
       c.dataset.path, frames, c.dataset.camera, to_string(c.tracker), c.scenario.person_dir,
       v.depth_m, v.speed_px_per_frame, v.start_x_px, to_string(c.mask.source), c.screen.name,
       c.screen.rounds, c.screen.mask_evidence, c.screen.track_history, c.map.history.forgetting,
-      to_string(c.rough_pose.method), c.rough_pose.ransac_threshold_px, c.extraction.features);
+      to_string(c.rough_pose.method), c.rough_pose.ransac_threshold_px, c.extraction.features,
+      kVersionMajor, kVersionMinor, kVersionPatch);
 }
 
 std::string grid_cache_file(const Config& c, const PersonVariant& v) {
