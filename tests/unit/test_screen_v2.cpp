@@ -194,15 +194,15 @@ TEST_CASE("mask neighbourhood and history are evidence only above their floors",
           "[screen_v2][evidence]") {
   const double s = 0.4;
   hbos::Matchesd m = static_matches(300, s, 31);
-  // Two matches 1.8 px/sigma off (3 < 4.5 scales: beyond the mask floor, inside the gate), one
-  // next to a mask, one far from it; two matches 1.5 px/sigma off (beyond the history's floor of
-  // one scale, inside the gate) with a long and a short history; one match as close as the
-  // background's noise with a long history.
+  // Two matches 2.2 px/sigma off (about 5.5 noise scales: beyond the mask floor of 4, inside
+  // the gate of 2.447), one next to a mask, one far from it; two matches 1.5 px/sigma off (beyond
+  // the history's floor of one scale, inside the gate) with a long and a short history; one match
+  // as close as the background's noise with a long history.
   const Eigen::Index near_mask = m.size();
-  m.add(Vec2(100, 100), Vec2(101.8, 100));
+  m.add(Vec2(100, 100), Vec2(102.2, 100));
   m.set_mask_distance(near_mask, 3.0);
   const Eigen::Index far_mask = m.size();
-  m.add(Vec2(500, 400), Vec2(501.8, 400));
+  m.add(Vec2(500, 400), Vec2(502.2, 400));
   m.set_mask_distance(far_mask, 60.0);
   const Eigen::Index persistent = m.size();
   m.add(Vec2(300, 300), Vec2(301.5, 300.3));
@@ -215,6 +215,13 @@ TEST_CASE("mask neighbourhood and history are evidence only above their floors",
   m.set_outlier_history(looks_static, 0.9);
   hbos::ReprojectionScreend screen;
   const auto& r = screen.screen(m);
+  // The premises: both mask matches inside the gate and beyond the mask floor, the history
+  // matches beyond one noise scale, the last one below it.
+  REQUIRE(r.magnitude_cut() == Approx(2.447).margin(1e-3));
+  REQUIRE(r.magnitude(near_mask) < r.magnitude_cut());
+  REQUIRE(r.magnitude(near_mask) > 4.0 * r.noise_scale());
+  REQUIRE(r.magnitude(persistent) > r.noise_scale());
+  REQUIRE(r.magnitude(looks_static) < r.noise_scale());
   CHECK_FALSE(r.inlier(near_mask));
   CHECK(r.inlier(far_mask));
   CHECK_FALSE(r.inlier(persistent));
