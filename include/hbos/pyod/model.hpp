@@ -326,7 +326,7 @@ class PyodHbos {
                       " bins but n_bins = ", params.n_bins);
       model.features_.push_back(std::move(f.f_));
     }
-    model.set_training_outputs(std::move(training_scores));
+    model.set_training_scores(std::move(training_scores));
     return model;
   }
 
@@ -359,7 +359,7 @@ class PyodHbos {
                                                    counts[static_cast<std::size_t>(j)], n, j,
                                                    params, column, scored_bins));
     }
-    model.set_training_outputs(std::move(training_scores));
+    model.set_training_scores(std::move(training_scores));
     return model;
   }
 
@@ -428,15 +428,6 @@ class PyodHbos {
   };
 
   PyodHbos() = default;
-
-  /// decision_scores, then PyOD's threshold of them and the labels.
-  void set_training_outputs(Vector training_scores) {
-    std::vector<Scalar> percentile_scratch;
-    threshold_ = detail::pyod_threshold(training_scores.data(), training_scores.size(),
-                                        params_.contamination, percentile_scratch);
-    scores_ = std::move(training_scores);
-    labels_ = label(scores_);
-  }
 
   // The sharded fit (hbos/pyod/merge.hpp) builds models from merged counts.
   template <class>
