@@ -37,17 +37,21 @@ struct CoherenceWork {
   /// per match: its depth layer; its residual clamped to the gate (support matches); its
   /// neighbours' sums (its own contribution taken out)
   std::vector<Scalar> layer, kx, ky, nsx, nsy, ncount;
+  /// The grid of the last call (its size and `cell`), reused by the next call while `grid_valid`
+  /// and its n, cell_px and depth_ratio are the same: the caller clears it whenever the pixels
+  /// or depths may have changed. (The screen clears it per frame: its evidence rounds share the
+  /// frame's pixels and depths, and the logarithm and divisions per match that place them were
+  /// taken once per round.)
+  bool grid_valid = false;
+  std::size_t grid_n = 0, nx = 1, ny = 1, nl = 1;
+  double grid_cell_px = 0.0, grid_depth_ratio = 0.0;
 };
 
-/// Fills `llr` (size n) with the coherence evidence of every match. `u`, `v` are the predicted
-/// pixels, `depth` their depths (NaN = unknown; depth is used only when every match has one),
-/// `work.dx/dy/support` must be filled; `gate` clamps each neighbour's contribution [px/sigma];
-/// `scale` is the noise scale s (> 0).
+/// The cells of coherence_evidence (see there) into work.cell, the grid's size into work.nx,
+/// ny, nl; marks the grid valid for these inputs.
 template <class Scalar>
-void coherence_evidence(const Scalar* u, const Scalar* v, const Scalar* depth, std::size_t n,
-                        Scalar gate, Scalar scale, double cell_px, double depth_ratio, double z0,
-                        CoherenceWork<Scalar>& work, Scalar* llr) {
-  if (n == 0) return;
+void coherence_grid(const Scalar* u, const Scalar* v, const Scalar* depth, std::size_t n,
+                    double cell_px, double depth_ratio, CoherenceWork<Scalar>& work) {
   Scalar u0 = u[0], u1 = u[0], v0 = v[0], v1 = v[0];
   bool all_depth = true;
   Scalar l0 = std::numeric_limits<Scalar>::infinity(), l1 = -l0;
@@ -76,7 +80,6 @@ void coherence_evidence(const Scalar* u, const Scalar* v, const Scalar* depth, s
   const std::size_t max_layers = std::max<std::size_t>(1, kMaxCoherenceCells / (nx * ny));
   const std::size_t merge = (layers + max_layers - 1) / max_layers;  // layers per grid layer
   const std::size_t nl = (layers + merge - 1) / merge;
-  const std::size_t cells = nx * ny * nl;
   work.cell.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
     const std::size_t in_plane = grid.cell(static_cast<double>(u[i]), static_cast<double>(v[i]));
@@ -87,13 +90,47 @@ void coherence_evidence(const Scalar* u, const Scalar* v, const Scalar* depth, s
     }
     work.cell[i] = static_cast<std::uint32_t>(cl * nx * ny + in_plane);
   }
+  work.nx = nx;
+  work.ny = ny;
+  work.nl = nl;
+  work.grid_n = n;
+  work.grid_cell_px = cell_px;
+  work.grid_depth_ratio = depth_ratio;
+  work.grid_valid = true;
+}
+
+/// Fills `llr` (size n) with the coherence evidence of every match. `u`, `v` are the predicted
+/// pixels, `depth` their depths (NaN = unknown; depth is used only when every match has one),
+/// `work.dx/dy/support` must be filled; `gate` clamps each neighbour's contribution [px/sigma];
+/// `scale` is the noise scale s (> 0). The cells are those of `work`'s grid while it is valid
+/// (see CoherenceWork::grid_valid).
+template <class Scalar>
+void coherence_evidence(const Scalar* u, const Scalar* v, const Scalar* depth, std::size_t n,
+                        Scalar gate, Scalar scale, double cell_px, double depth_ratio, double z0,
+                        CoherenceWork<Scalar>& work, Scalar* llr) {
+  if (n == 0) return;
+  if (!work.grid_valid || work.grid_n != n || work.grid_cell_px != cell_px ||
+      work.grid_depth_ratio != depth_ratio) {
+    coherence_grid(u, v, depth, n, cell_px, depth_ratio, work);
+  }
+  const std::size_t nx = work.nx, ny = work.ny, nl = work.nl;
+  const std::size_t cells = nx * ny * nl;
   for (auto* a : {&work.sx, &work.sy, &work.count}) a->assign(cells, Scalar(0));
   work.kx.resize(n);
   work.ky.resize(n);
+  // Below gate^2 less a margin of a few roundings, m = sqrt(|d|^2) cannot round above the gate:
+  // k is 1 there without the square root (support matches lie within the gate, so that is
+  // nearly every one); elsewhere m and k are taken as before.
+  const Scalar within2 =
+      gate * gate * (Scalar(1) - Scalar(8) * std::numeric_limits<Scalar>::epsilon());
   for (std::size_t i = 0; i < n; ++i) {
     if (!work.support[i]) continue;
-    const Scalar m = std::sqrt(work.dx[i] * work.dx[i] + work.dy[i] * work.dy[i]);
-    const Scalar k = m > gate ? gate / m : Scalar(1);
+    const Scalar m2 = work.dx[i] * work.dx[i] + work.dy[i] * work.dy[i];
+    Scalar k = Scalar(1);
+    if (!(m2 <= within2)) {
+      const Scalar m = std::sqrt(m2);
+      k = m > gate ? gate / m : Scalar(1);
+    }
     const std::uint32_t c = work.cell[i];
     work.kx[i] = k * work.dx[i];
     work.ky[i] = k * work.dy[i];

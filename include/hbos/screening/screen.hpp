@@ -311,6 +311,8 @@ void ReprojectionScreen<Scalar>::prepare(const Matches<Scalar>& matches, Index n
   r.magnitude_cut_ = r.noise_scale_ = std::numeric_limits<Scalar>::quiet_NaN();
   r.n_evidence_ = 0;
   r.coherence_.clear();
+  // A new frame: the coherence grid of the last one no longer places these matches.
+  coherence_work_.grid_valid = false;
 
   const Index flagged = matches.flagged_count();
   r.n_flagged_ = flagged;
