@@ -635,9 +635,10 @@ void ReprojectionScreen<Scalar>::run_gated(const Matches<Scalar>& matches, const
   auto charge = [&](Index feature, const std::vector<Scalar>& values, std::uint8_t bit,
                     double width, Scalar floor) {
     Scalar* out = r.contribution_.data() + feature * n;
-    bool any = false;
-    for (const std::uint8_t f : fired_) any = any || (f & bit) != 0;
-    if (!any) return;
+    // (Stops at the first: most frames fire on few matches, many on none.)
+    if (std::none_of(fired_.begin(), fired_.end(),
+                     [bit](std::uint8_t f) { return (f & bit) != 0; }))
+      return;
     if (!have_static) {
       for (std::size_t k = 0; k < un; ++k)
         if (fired_[k] & bit) out[k] = no_reference;
@@ -665,13 +666,14 @@ void ReprojectionScreen<Scalar>::run_gated(const Matches<Scalar>& matches, const
 
   // 7. Decision statistic: max(t m / G, E); the cut t.
   Index by_evidence = 0;
+  // The least score above t, once per frame (a libm call per match otherwise).
+  const Scalar above = std::nextafter(t, std::numeric_limits<Scalar>::infinity());
   for (std::size_t k = 0; k < un; ++k) {
     Scalar e = 0;
     for (Index j = 0; j < kFeatures; ++j)
       e += r.contribution_[static_cast<std::size_t>(j) * un + k];
     // score > t exactly when the magnitude is beyond the gate, whatever t and G (even inf).
     const Scalar m = r.magnitude_[k];
-    const Scalar above = std::nextafter(t, std::numeric_limits<Scalar>::infinity());
     Scalar g = t * (m / gate_);
     if (m > gate_) {
       g = std::isnan(g) ? above : std::max(g, above);
