@@ -92,12 +92,13 @@ void collect_field_samples(const Matches<Scalar>& matches, const Use& use,
     if (!use(i)) continue;
     const Eigen::Matrix<Scalar, 2, 1> p = matches.predicted(i);
     const Eigen::Matrix<Scalar, 2, 1> r = matches.residual(i);
-    const Scalar s = matches.sigma(i);
     samples.u[m] = p.x();
     samples.v[m] = p.y();
     samples.rx[m] = r.x();
     samples.ry[m] = r.y();
-    samples.w[m] = Scalar(1) / (s * s);
+    // 1 / sigma^2 as Matches computed it when the match was added (the same division of the
+    // same value): no division per sample and fit.
+    samples.w[m] = matches.information(i);
     ++m;
   }
   for (auto* c : {&samples.u, &samples.v, &samples.rx, &samples.ry, &samples.w}) c->resize(m);
