@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <random>
 #include <string>
 #include <utility>
@@ -90,6 +91,108 @@ TEST_CASE("Matches rejects invalid input with the offending value", "[reprojecti
                     Catch::Contains("u_right is not finite"));
   CHECK_THROWS_AS(m.set_predicted(0, Vec2(0, 0)), hbos::InvalidArgument);
   CHECK(m.empty());  // nothing half-added
+}
+
+TEST_CASE("Matches::assign makes the matches add() would, bit for bit", "[reprojection]") {
+  hbos_test::SceneConfig c;
+  c.seed = 11;
+  c.n_matches = 400;
+  c.person_share = 0.05;
+  c.masked_person_share = 0.05;
+  const hbos_test::Scene scene = hbos_test::make_scene(c);
+  hbos::Matchesd added, assigned;
+  for (Eigen::Index i = 0; i < scene.size(); ++i)
+    added.add(scene.predicted.col(i), scene.observed.col(i), scene.sigma(i),
+              scene.on_dynamic_mask(i));
+  assigned.add(Vec2(1, 2), Vec2(3, 4));  // replaced, not appended to
+  assigned.add_stereo(Vec2(1, 2), Vec2(3, 4), 5.0, 6.0);
+  assigned.set_depth(0, 2.0);
+  assigned.assign(scene.predicted, scene.observed, scene.sigma, scene.on_dynamic_mask);
+  REQUIRE(assigned.size() == added.size());
+  CHECK(assigned.stereo_count() == 0);
+  CHECK(assigned.flagged_count() == added.flagged_count());
+  CHECK(added.flagged_count() > 0);
+  const auto same = [](double a, double b) {
+    return std::memcmp(&a, &b, sizeof a) == 0;  // bits, so NaN equals NaN
+  };
+  for (Eigen::Index i = 0; i < added.size(); ++i) {
+    INFO("match " << i);
+    CHECK(assigned.predicted(i) == added.predicted(i));
+    CHECK(assigned.observed(i) == added.observed(i));
+    CHECK(same(assigned.sigma(i), added.sigma(i)));
+    CHECK(same(assigned.information(i), added.information(i)));
+    CHECK(assigned.on_dynamic_mask(i) == added.on_dynamic_mask(i));
+    CHECK_FALSE(assigned.has_right(i));
+    CHECK(std::isnan(assigned.depth(i)));
+    CHECK(std::isnan(assigned.mask_distance(i)));
+    CHECK(std::isnan(assigned.outlier_history(i)));
+  }
+  hbos::ReprojectionScreend a, b;
+  const auto& ra = a.screen(added);
+  const auto& rb = b.screen(assigned);
+  for (Eigen::Index i = 0; i < added.size(); ++i) {
+    CHECK(same(ra.score(i), rb.score(i)));
+    CHECK(ra.inlier(i) == rb.inlier(i));
+  }
+  SECTION("an empty frame") {
+    assigned.assign(Eigen::Matrix2Xd(2, 0), Eigen::Matrix2Xd(2, 0), Eigen::ArrayXd(0),
+                    Eigen::Array<bool, Eigen::Dynamic, 1>(0));
+    CHECK(assigned.empty());
+    CHECK(assigned.flagged_count() == 0);
+  }
+}
+
+TEST_CASE("Matches::assign rejects what add() rejects, naming the match and its field",
+          "[reprojection]") {
+  const double nan = std::nan("");
+  Eigen::Matrix2Xd predicted(2, 4), observed(2, 4);
+  predicted << 1, 2, 3, 4, 5, 6, 7, 8;
+  observed = predicted.array() + 0.5;
+  Eigen::ArrayXd sigma = Eigen::ArrayXd::Constant(4, 1.2);
+  const Eigen::Array<bool, Eigen::Dynamic, 1> flags =
+      Eigen::Array<bool, Eigen::Dynamic, 1>::Zero(4);
+  hbos::Matchesd m;
+  m.add(Vec2(10, 20), Vec2(11, 21), 1.0, true);
+  const auto unchanged = [&] {
+    CHECK(m.size() == 1);  // a failed assign leaves the matches as they were
+    CHECK(m.flagged_count() == 1);
+    CHECK(m.residual(0) == Vec2(1, 1));
+  };
+  {
+    Eigen::Matrix2Xd bad = predicted;
+    bad(1, 2) = nan;
+    CHECK_THROWS_WITH(m.assign(bad, observed, sigma, flags),
+                      Catch::Contains("match 2: predicted pixel is not finite"));
+    unchanged();
+  }
+  {
+    Eigen::Matrix2Xd bad = observed;
+    bad(0, 3) = INFINITY;
+    CHECK_THROWS_WITH(m.assign(predicted, bad, sigma, flags),
+                      Catch::Contains("match 3: observed pixel is not finite"));
+    unchanged();
+  }
+  {
+    Eigen::ArrayXd bad = sigma;
+    bad(1) = 0.0;
+    bad(3) = nan;  // the first invalid match is the one named
+    CHECK_THROWS_WITH(m.assign(predicted, observed, bad, flags),
+                      Catch::Contains("match 1: sigma must be finite and > 0, got 0"));
+    unchanged();
+    bad(1) = -1.0;
+    CHECK_THROWS_WITH(m.assign(predicted, observed, bad, flags),
+                      Catch::Contains("match 1: sigma must be finite and > 0, got -1"));
+    bad(1) = 1e200;  // its square overflows
+    CHECK_THROWS_WITH(m.assign(predicted, observed, bad, flags),
+                      Catch::Contains("match 1: sigma 1e+200 is out of range"));
+    unchanged();
+  }
+  CHECK_THROWS_WITH(m.assign(predicted, observed, Eigen::ArrayXd::Ones(3), flags),
+                    Catch::Contains("columns of one length"));
+  unchanged();
+  m.assign(predicted, observed, sigma, flags);
+  CHECK(m.size() == 4);
+  CHECK(m.flagged_count() == 0);
 }
 
 TEST_CASE("PinholeCamera projects and back-projects consistently", "[reprojection]") {

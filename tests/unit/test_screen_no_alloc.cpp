@@ -76,3 +76,16 @@ TEST_CASE("reserve alone is enough: the first frame does not allocate", "[reproj
   CHECK(counter.count() == 0);
   CHECK(result.size() == 1000);
 }
+
+TEST_CASE("Matches::assign allocates nothing once reserved", "[reprojection][alloc]") {
+  hbos_test::SceneConfig c;
+  c.n_matches = 1000;
+  c.masked_person_share = 0.05;
+  const hbos_test::Scene scene = hbos_test::make_scene(c);
+  hbos::Matchesd matches;
+  matches.reserve(1000);
+  hbos_test::AllocationCounter counter;
+  matches.assign(scene.predicted, scene.observed, scene.sigma, scene.on_dynamic_mask);
+  CHECK(counter.count() == 0);
+  CHECK(matches.size() == 1000);
+}

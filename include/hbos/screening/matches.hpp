@@ -21,6 +21,7 @@
 /// Threading: `Matches` is a plain container; concurrent const access is safe.
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -97,6 +98,74 @@ class Matches {
            bool on_dynamic_mask = false) {
     const Scalar none = std::numeric_limits<Scalar>::quiet_NaN();
     push(predicted, observed, none, none, sigma, on_dynamic_mask);
+  }
+
+  /// Replaces every match with the n monocular matches of the caller's columns: match i is
+  /// predicted.col(i), observed.col(i) [px], sigma(i) and on_dynamic_mask(i), as n calls of
+  /// add() after clear() would make it (the same values, bit for bit), checked the same way. The
+  /// checks run over every match first, then each column is written once (add() makes a call,
+  /// four checks with their branches and twelve appends per match); an invalid match throws
+  /// InvalidArgument naming its index and field (the first one add() would have thrown on), and
+  /// leaves the matches as they were. A 2 x n column-major matrix is the layout of an array of (x,
+  /// y) points.
+  void assign(const Eigen::Ref<const Eigen::Matrix<Scalar, 2, Eigen::Dynamic>>& predicted,
+              const Eigen::Ref<const Eigen::Matrix<Scalar, 2, Eigen::Dynamic>>& observed,
+              const Eigen::Ref<const Eigen::Array<Scalar, Eigen::Dynamic, 1>>& sigma,
+              const Eigen::Ref<const Eigen::Array<bool, Eigen::Dynamic, 1>>& on_dynamic_mask) {
+    const Index n = predicted.cols();
+    detail::require(observed.cols() == n && sigma.size() == n && on_dynamic_mask.size() == n,
+                    "assign needs columns of one length: predicted ", n, ", observed ",
+                    observed.cols(), ", sigma ", sigma.size(), ", on_dynamic_mask ",
+                    on_dynamic_mask.size());
+    // The checks of add() first, over whole columns (Eigen arrays, vectorised where the points
+    // lie contiguously), so an invalid frame changes nothing; the first failing match is looked
+    // for, and named, only then. sigma^2 in the normal range keeps sigma finite and nonzero.
+    using Array = Eigen::Array<Scalar, Eigen::Dynamic, 1>;
+    const auto finite = [](const auto& points) {
+      return points.outerStride() == 2
+                 ? Eigen::Map<const Array>(points.data(), 2 * points.cols()).allFinite()
+                 : points.allFinite();
+    };
+    constexpr Scalar kMin = std::numeric_limits<Scalar>::min();
+    const bool valid =
+        finite(predicted) && finite(observed) &&
+        (sigma > Scalar(0) && sigma * sigma >= kMin && sigma * sigma <= Scalar(1) / kMin).all();
+    if (!valid) {
+      for (Index i = 0; i < n; ++i) check_match(i, predicted.col(i), observed.col(i), sigma(i));
+    }
+    // Then each column written once, in one pass.
+    const auto k = static_cast<std::size_t>(n);
+    for (auto* c :
+         {&predicted_x_, &predicted_y_, &observed_x_, &observed_y_, &sigma_, &information_,
+          &predicted_right_, &observed_right_, &depth_, &mask_distance_, &history_})
+      c->resize(k);
+    flag_.resize(k);
+    // Raw pointers, read once: a store through the uint8_t flags may alias anything, so the
+    // vectors' data pointers would otherwise be reloaded for every match.
+    Scalar* const out_px = predicted_x_.data();
+    Scalar* const out_py = predicted_y_.data();
+    Scalar* const out_ox = observed_x_.data();
+    Scalar* const out_oy = observed_y_.data();
+    std::uint8_t* const out_flag = flag_.data();
+    Index flagged = 0;
+    for (Index i = 0; i < n; ++i) {
+      const auto j = static_cast<std::size_t>(i);
+      out_px[j] = predicted(0, i);
+      out_py[j] = predicted(1, i);
+      out_ox[j] = observed(0, i);
+      out_oy[j] = observed(1, i);
+      const bool f = on_dynamic_mask(i);
+      out_flag[j] = f ? 1 : 0;
+      flagged += f ? 1 : 0;
+    }
+    // Whole columns (Eigen arrays: two divisions at a time), as push: 1 / sigma^2.
+    Eigen::Map<Array>(sigma_.data(), n) = sigma;
+    Eigen::Map<Array>(information_.data(), n) = Scalar(1) / (sigma * sigma);
+    const Scalar unknown = std::numeric_limits<Scalar>::quiet_NaN();
+    for (auto* c : {&predicted_right_, &observed_right_, &depth_, &mask_distance_, &history_})
+      std::fill(c->begin(), c->end(), unknown);
+    n_stereo_ = 0;
+    n_flagged_ = flagged;
   }
 
   /// Appends a stereo / RGB-D match with the right-image coordinates (ORB-SLAM2's `u_right`,
@@ -202,9 +271,9 @@ class Matches {
   // The screen reads the columns directly, as whole arrays (vectorised arithmetic).
   friend class ReprojectionScreen<Scalar>;
 
-  void push(const Vector2& predicted, const Vector2& observed, Scalar predicted_right,
-            Scalar observed_right, Scalar sigma, bool flag) {
-    const Index i = size();
+  /// Throws InvalidArgument naming match i and its field unless the match is valid.
+  static void check_match(Index i, const Vector2& predicted, const Vector2& observed,
+                          Scalar sigma) {
     detail::require(predicted.allFinite(), "match ", i, ": predicted pixel is not finite (",
                     predicted.x(), ", ", predicted.y(), ")");
     detail::require(observed.allFinite(), "match ", i, ": observed pixel is not finite (",
@@ -220,6 +289,13 @@ class Matches {
       detail::require(false, "match ", i, ": sigma ", sigma,
                       " is out of range: sigma^2 and 1/sigma^2 must be finite and normal, so ",
                       "sigma lies in [", std::sqrt(kMin), ", ", Scalar(1) / std::sqrt(kMin), "]");
+  }
+
+  void push(const Vector2& predicted, const Vector2& observed, Scalar predicted_right,
+            Scalar observed_right, Scalar sigma, bool flag) {
+    const Index i = size();
+    check_match(i, predicted, observed, sigma);
+    const Scalar s2 = sigma * sigma;
     predicted_x_.push_back(predicted.x());
     predicted_y_.push_back(predicted.y());
     observed_x_.push_back(observed.x());
