@@ -118,11 +118,18 @@ void balance_by_cell(FieldSamples<Scalar>& samples, double cell_px,
                      std::vector<Scalar>& factor) {
   const std::size_t m = samples.size();
   if (m == 0 || !(cell_px > 0.0)) return;
-  const auto [u_lo, u_hi] = std::minmax_element(samples.u.begin(), samples.u.end());
-  const auto [v_lo, v_hi] = std::minmax_element(samples.v.begin(), samples.v.end());
+  // The extremes as std::minmax_element finds them (the first smallest, the last largest), with
+  // selects instead of its branches, which went either way for pixels in no particular order.
+  Scalar u_lo = samples.u[0], u_hi = u_lo, v_lo = samples.v[0], v_hi = v_lo;
+  for (std::size_t i = 1; i < m; ++i) {
+    u_lo = std::min(u_lo, samples.u[i]);
+    u_hi = std::max(samples.u[i], u_hi);
+    v_lo = std::min(v_lo, samples.v[i]);
+    v_hi = std::max(samples.v[i], v_hi);
+  }
   // At most 64 x 64 cells (kMaxBalanceCells; larger cells for a larger spread).
-  const PixelGrid grid(static_cast<double>(*u_lo), static_cast<double>(*u_hi),
-                       static_cast<double>(*v_lo), static_cast<double>(*v_hi), cell_px, 64.0);
+  const PixelGrid grid(static_cast<double>(u_lo), static_cast<double>(u_hi),
+                       static_cast<double>(v_lo), static_cast<double>(v_hi), cell_px, 64.0);
   counts.assign(grid.nx() * grid.ny(), 0);
   cell_of.resize(m);
   for (std::size_t i = 0; i < m; ++i) {
@@ -134,16 +141,14 @@ void balance_by_cell(FieldSamples<Scalar>& samples, double cell_px,
   for (const std::uint32_t c : counts) occupied += c > 0 ? 1 : 0;
   const double cap = static_cast<double>(m) / static_cast<double>(occupied);
   // The factor of each crowded cell once, not a division per sample (the same quotient: the
-  // same bits). 1 marks a cell within the cap, whose samples keep their weight untouched.
+  // same bits). 1 marks a cell within the cap, whose samples keep their weight.
   factor.resize(counts.size());
   for (std::size_t c = 0; c < counts.size(); ++c) {
     const auto count = static_cast<double>(counts[c]);
     factor[c] = count > cap ? static_cast<Scalar>(cap / count) : Scalar(1);
   }
-  for (std::size_t i = 0; i < m; ++i) {
-    const Scalar f = factor[cell_of[i]];
-    if (f != Scalar(1)) samples.w[i] *= f;
-  }
+  // A factor of 1 leaves its weight as it is (w * 1 = w exactly): no branch.
+  for (std::size_t i = 0; i < m; ++i) samples.w[i] *= factor[cell_of[i]];
 }
 
 /// The weighted median of (value, weight > 0) pairs: the smallest value whose cumulative weight,

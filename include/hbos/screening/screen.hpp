@@ -356,7 +356,8 @@ Scalar ReprojectionScreen<Scalar>::field_support(const Matches<Scalar>& matches,
     if (!in_fit(matches, i)) continue;
     const Eigen::Matrix<Scalar, 2, 1> d = matches.residual(i) - field.at(matches.predicted(i));
     const Scalar s2 = matches.sigma(i) * matches.sigma(i);
-    if (d.squaredNorm() <= w2 * s2) support += samples_.w[k] * s2;
+    // Outside the window it adds +0, which leaves the sum as it is: no branch.
+    support += d.squaredNorm() <= w2 * s2 ? samples_.w[k] * s2 : Scalar(0);
     ++k;
   }
   return support;
