@@ -293,9 +293,13 @@ class Matches {
 
   void push(const Vector2& predicted, const Vector2& observed, Scalar predicted_right,
             Scalar observed_right, Scalar sigma, bool flag) {
-    const Index i = size();
-    check_match(i, predicted, observed, sigma);
+    // One test on the common path; the checks that name the field only for an invalid match.
+    // (sigma^2 in the normal range keeps sigma finite and nonzero.)
     const Scalar s2 = sigma * sigma;
+    constexpr Scalar kMin = std::numeric_limits<Scalar>::min();
+    if (!(predicted.allFinite() && observed.allFinite() && sigma > Scalar(0) && s2 >= kMin &&
+          s2 <= Scalar(1) / kMin))
+      check_match(size(), predicted, observed, sigma);
     predicted_x_.push_back(predicted.x());
     predicted_y_.push_back(predicted.y());
     observed_x_.push_back(observed.x());
