@@ -195,6 +195,33 @@ TEST_CASE("Matches::assign rejects what add() rejects, naming the match and its 
   CHECK(m.flagged_count() == 0);
 }
 
+TEST_CASE("coherence: a neighbour clamped to the gate whatever the gate's square",
+          "[reprojection]") {
+  // The support loop skips the square root below gate^2 less a margin; where gate^2 overflows,
+  // the clamp must still be taken from the square root: |d| = inf beyond a gate of 1e200 is
+  // clamped to nothing, as a neighbour at 0 is. And the grid is reused only while valid.
+  const std::vector<double> u{100, 101, 102}, v{100, 100, 100};
+  const std::vector<double> depth(3, std::nan(""));
+  const auto evidence = [&](double dx0, double gate, hbos::detail::CoherenceWork<double>& w) {
+    w.dx = {dx0, 0.5, 0.25};
+    w.dy = {0.0, 0.5, 0.0};
+    w.support = {1, 1, 1};
+    std::vector<double> llr(3);
+    hbos::detail::coherence_evidence(u.data(), v.data(), depth.data(), 3, gate, 1.0, 40.0, 1.3, 0.0,
+                                     w, llr.data());
+    return llr;
+  };
+  hbos::detail::CoherenceWork<double> w;
+  const std::vector<double> far = evidence(1e300, 1e200, w);
+  CHECK(w.grid_valid);
+  w.grid_valid = false;
+  const std::vector<double> near = evidence(0.0, 1e200, w);
+  CHECK(far[1] == near[1]);
+  CHECK(far[2] == near[2]);
+  // A grid kept valid is reused as is: the same evidence from the same inputs.
+  CHECK(evidence(0.0, 1e200, w) == near);
+}
+
 TEST_CASE("PinholeCamera projects and back-projects consistently", "[reprojection]") {
   const hbos::PinholeCamerad camera;  // TUM3
   const Eigen::Vector3d p(0.2, -0.1, 2.0);

@@ -120,9 +120,13 @@ void coherence_evidence(const Scalar* u, const Scalar* v, const Scalar* depth, s
   work.ky.resize(n);
   // Below gate^2 less a margin of a few roundings, m = sqrt(|d|^2) cannot round above the gate:
   // k is 1 there without the square root (support matches lie within the gate, so that is
-  // nearly every one); elsewhere m and k are taken as before.
+  // nearly every one); elsewhere m and k are taken as before. The margin holds only while gate^2
+  // is a normal number (relative rounding); otherwise every match takes the square root (-1).
+  const Scalar gate2 = gate * gate;
   const Scalar within2 =
-      gate * gate * (Scalar(1) - Scalar(8) * std::numeric_limits<Scalar>::epsilon());
+      std::isfinite(gate2) && gate2 >= std::numeric_limits<Scalar>::min()
+          ? gate2 * (Scalar(1) - Scalar(8) * std::numeric_limits<Scalar>::epsilon())
+          : Scalar(-1);
   for (std::size_t i = 0; i < n; ++i) {
     if (!work.support[i]) continue;
     const Scalar m2 = work.dx[i] * work.dx[i] + work.dy[i] * work.dy[i];
