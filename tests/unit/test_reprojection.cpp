@@ -14,6 +14,7 @@
 #include <utility>
 #include <vector>
 
+#include "../support/screening_eval.hpp"
 #include "../support/synthetic_scene.hpp"
 
 // Every member of every template compiles, for both scalar types.
@@ -218,8 +219,39 @@ TEST_CASE("coherence: a neighbour clamped to the gate whatever the gate's square
   const std::vector<double> near = evidence(0.0, 1e200, w);
   CHECK(far[1] == near[1]);
   CHECK(far[2] == near[2]);
-  // A grid kept valid is reused as is: the same evidence from the same inputs.
-  CHECK(evidence(0.0, 1e200, w) == near);
+}
+
+TEST_CASE("coherence: a screen reused across frames places each frame's matches afresh",
+          "[reprojection]") {
+  // The coherence grid is kept between a frame's evidence rounds; a new frame of the same size
+  // must not reuse the last frame's cells (ReprojectionScreen::prepare clears it).
+  const auto frame = [](unsigned seed) {
+    hbos_test::SceneConfig c;
+    c.seed = seed;
+    c.n_matches = 400;
+    c.person_share = 0.2;
+    hbos::Matchesd m;
+    hbos_test::load_matches(hbos_test::make_scene(c), m);
+    return m;
+  };
+  const hbos::Matchesd first = frame(21), second = frame(22);
+  REQUIRE(first.size() == second.size());
+  hbos::ReprojectionScreend reused, fresh;
+  const auto& from_first = reused.screen(first);
+  std::vector<double> first_coherence;
+  for (Eigen::Index i = 0; i < first.size(); ++i)
+    first_coherence.push_back(from_first.coherence(i));
+  const auto& ra = reused.screen(second);
+  const auto& rb = fresh.screen(second);
+  Eigen::Index nonzero = 0;
+  for (Eigen::Index i = 0; i < second.size(); ++i) {
+    INFO("match " << i);
+    CHECK(ra.coherence(i) == rb.coherence(i));
+    CHECK(ra.score(i) == rb.score(i));
+    nonzero += rb.coherence(i) != 0.0 ? 1 : 0;
+  }
+  CHECK(nonzero > 0);  // the premise: the evidence was computed on this frame
+  CHECK(first_coherence != std::vector<double>(first_coherence.size(), 0.0));
 }
 
 TEST_CASE("PinholeCamera projects and back-projects consistently", "[reprojection]") {
