@@ -21,6 +21,8 @@
 #define HBOS_DETAIL_BYTE_BINS_SSE2 1
 #endif
 
+#include "hbos/detail/isa.hpp"
+
 namespace hbos::detail {
 
 #ifdef HBOS_DETAIL_BYTE_BINS_SSE2
@@ -32,12 +34,65 @@ inline void store_16_bins(__m128i q0, __m128i q1, __m128i q2, __m128i q3, std::u
 }
 #endif
 
+#if defined(HBOS_DETAIL_ISA_DISPATCH) && defined(HBOS_DETAIL_BYTE_BINS_SSE2)
+// The AVX2 bodies of the kernels below: four doubles or eight floats per vector, with the very
+// subtract, multiply, min (a < b ? a : b) and truncation per value, so the same bytes; no FMA
+// is enabled, so nothing can be contracted. Each returns the values it did (a multiple of 16).
+
+/// Four doubles' bins (x - lo) * inv capped at last, as four int32.
+HBOS_DETAIL_TARGET_AVX2 inline __m128i four_bins_avx2(const double* p, __m256d lo, __m256d inv,
+                                                      __m256d last) {
+  return _mm256_cvttpd_epi32(
+      _mm256_min_pd(_mm256_mul_pd(_mm256_sub_pd(_mm256_loadu_pd(p), lo), inv), last));
+}
+
+/// Eight floats' bins as eight int32.
+HBOS_DETAIL_TARGET_AVX2 inline __m256i eight_bins_avx2(const float* p, __m256 lo, __m256 inv,
+                                                       __m256 last) {
+  return _mm256_cvttps_epi32(
+      _mm256_min_ps(_mm256_mul_ps(_mm256_sub_ps(_mm256_loadu_ps(p), lo), inv), last));
+}
+
+HBOS_DETAIL_TARGET_AVX2 inline std::size_t uniform_byte_bins_avx2(const double* x, std::size_t m,
+                                                                  double lo, double inv,
+                                                                  double last, std::uint8_t* b) {
+  const __m256d vlo = _mm256_set1_pd(lo), vinv = _mm256_set1_pd(inv), vlast = _mm256_set1_pd(last);
+  std::size_t i = 0;
+  for (; m - i >= 16; i += 16) {
+    const __m128i q0 = four_bins_avx2(x + i, vlo, vinv, vlast);
+    const __m128i q1 = four_bins_avx2(x + i + 4, vlo, vinv, vlast);
+    const __m128i q2 = four_bins_avx2(x + i + 8, vlo, vinv, vlast);
+    const __m128i q3 = four_bins_avx2(x + i + 12, vlo, vinv, vlast);
+    store_16_bins(q0, q1, q2, q3, b + i);
+  }
+  return i;
+}
+
+HBOS_DETAIL_TARGET_AVX2 inline std::size_t uniform_byte_bins_avx2(const float* x, std::size_t m,
+                                                                  float lo, float inv, float last,
+                                                                  std::uint8_t* b) {
+  const __m256 vlo = _mm256_set1_ps(lo), vinv = _mm256_set1_ps(inv), vlast = _mm256_set1_ps(last);
+  std::size_t i = 0;
+  for (; m - i >= 16; i += 16) {
+    const __m256i q0 = eight_bins_avx2(x + i, vlo, vinv, vlast);
+    const __m256i q1 = eight_bins_avx2(x + i + 8, vlo, vinv, vlast);
+    store_16_bins(_mm256_castsi256_si128(q0), _mm256_extracti128_si256(q0, 1),
+                  _mm256_castsi256_si128(q1), _mm256_extracti128_si256(q1, 1), b + i);
+  }
+  return i;
+}
+#endif
+
 /// b[i] = min(trunc((x[i] - lo) * inv), last) for the contiguous x[0, m), each x[i] >= lo, where
 /// last is an integer below 256: the bin of uniform_bin (histogram.hpp), computed the same way.
 template <class Scalar>
 void uniform_byte_bins(const Scalar* x, std::size_t m, Scalar lo, Scalar inv, Scalar last,
-                       std::uint8_t* b) {
+                       std::uint8_t* b, Isa isa = active_isa()) {
   std::size_t i = 0;
+#if defined(HBOS_DETAIL_ISA_DISPATCH) && defined(HBOS_DETAIL_BYTE_BINS_SSE2)
+  if (isa == Isa::Avx2) i = uniform_byte_bins_avx2(x, m, lo, inv, last, b);
+#endif
+  (void)isa;
 #ifdef HBOS_DETAIL_BYTE_BINS_SSE2
   if constexpr (std::is_same_v<Scalar, double>) {
     const __m128d vlo = _mm_set1_pd(lo), vinv = _mm_set1_pd(inv), vlast = _mm_set1_pd(last);
@@ -92,6 +147,63 @@ std::size_t interleaved_sixteens(const Scalar* x, std::size_t m, const Four& fou
 }
 #endif
 
+#if defined(HBOS_DETAIL_ISA_DISPATCH) && defined(HBOS_DETAIL_BYTE_BINS_SSE2)
+/// Four rows of two interleaved doubles from p: feature 0's bins in `first`, feature 1's in
+/// `second` (the constants alternate between the features lane by lane).
+HBOS_DETAIL_TARGET_AVX2 inline void four_rows_avx2(const double* p, __m256d lo, __m256d inv,
+                                                   __m256d last, __m128i& first, __m128i& second) {
+  const __m128 r01 = _mm_castsi128_ps(four_bins_avx2(p, lo, inv, last));      // a0 b0 a1 b1
+  const __m128 r23 = _mm_castsi128_ps(four_bins_avx2(p + 4, lo, inv, last));  // a2 b2 a3 b3
+  first = _mm_castps_si128(_mm_shuffle_ps(r01, r23, _MM_SHUFFLE(2, 0, 2, 0)));
+  second = _mm_castps_si128(_mm_shuffle_ps(r01, r23, _MM_SHUFFLE(3, 1, 3, 1)));
+}
+
+/// The same for floats: eight values, four rows, parted by a lane permutation.
+HBOS_DETAIL_TARGET_AVX2 inline void four_rows_avx2(const float* p, __m256 lo, __m256 inv,
+                                                   __m256 last, __m128i& first, __m128i& second) {
+  const __m256i parted = _mm256_permutevar8x32_epi32(eight_bins_avx2(p, lo, inv, last),
+                                                     _mm256_setr_epi32(0, 2, 4, 6, 1, 3, 5, 7));
+  first = _mm256_castsi256_si128(parted);
+  second = _mm256_extracti128_si256(parted, 1);
+}
+
+template <class Scalar, class Vec>
+HBOS_DETAIL_TARGET_AVX2 std::size_t interleaved_sixteens_avx2(const Scalar* x, std::size_t m,
+                                                              Vec lo, Vec inv, Vec last,
+                                                              std::uint8_t* b0, std::uint8_t* b1) {
+  std::size_t r = 0;
+  for (; m - r >= 16; r += 16) {
+    const Scalar* p = x + 2 * r;
+    __m128i a0, a1, a2, a3, s0, s1, s2, s3;
+    four_rows_avx2(p, lo, inv, last, a0, s0);
+    four_rows_avx2(p + 8, lo, inv, last, a1, s1);
+    four_rows_avx2(p + 16, lo, inv, last, a2, s2);
+    four_rows_avx2(p + 24, lo, inv, last, a3, s3);
+    store_16_bins(a0, a1, a2, a3, b0 + r);
+    store_16_bins(s0, s1, s2, s3, b1 + r);
+  }
+  return r;
+}
+
+HBOS_DETAIL_TARGET_AVX2 inline std::size_t interleaved_byte_bins_2_avx2(
+    const double* x, std::size_t m, const ByteBinConstants<double>& c0,
+    const ByteBinConstants<double>& c1, std::uint8_t* b0, std::uint8_t* b1) {
+  return interleaved_sixteens_avx2(x, m, _mm256_setr_pd(c0.lo, c1.lo, c0.lo, c1.lo),
+                                   _mm256_setr_pd(c0.inv, c1.inv, c0.inv, c1.inv),
+                                   _mm256_setr_pd(c0.last, c1.last, c0.last, c1.last), b0, b1);
+}
+
+HBOS_DETAIL_TARGET_AVX2 inline std::size_t interleaved_byte_bins_2_avx2(
+    const float* x, std::size_t m, const ByteBinConstants<float>& c0,
+    const ByteBinConstants<float>& c1, std::uint8_t* b0, std::uint8_t* b1) {
+  return interleaved_sixteens_avx2(
+      x, m, _mm256_setr_ps(c0.lo, c1.lo, c0.lo, c1.lo, c0.lo, c1.lo, c0.lo, c1.lo),
+      _mm256_setr_ps(c0.inv, c1.inv, c0.inv, c1.inv, c0.inv, c1.inv, c0.inv, c1.inv),
+      _mm256_setr_ps(c0.last, c1.last, c0.last, c1.last, c0.last, c1.last, c0.last, c1.last), b0,
+      b1);
+}
+#endif
+
 /// The bins of uniform_byte_bins for two features stored row by row, as a row-major matrix with
 /// two columns (numpy's C order) stores them: for r < m, x[2 r] is feature 0's value and
 /// x[2 r + 1] feature 1's; b0[r] and b1[r] get their bins. Each value takes the same arithmetic
@@ -99,11 +211,17 @@ std::size_t interleaved_sixteens(const Scalar* x, std::size_t m, const Four& fou
 /// bins, in registers, instead of gathering each strided column into a buffer first.
 template <class Scalar>
 void interleaved_byte_bins_2(const Scalar* x, std::size_t m, const ByteBinConstants<Scalar>& c0,
-                             const ByteBinConstants<Scalar>& c1, std::uint8_t* b0,
-                             std::uint8_t* b1) {
+                             const ByteBinConstants<Scalar>& c1, std::uint8_t* b0, std::uint8_t* b1,
+                             Isa isa = active_isa()) {
   std::size_t r = 0;
+#if defined(HBOS_DETAIL_ISA_DISPATCH) && defined(HBOS_DETAIL_BYTE_BINS_SSE2)
+  if (isa == Isa::Avx2) r = interleaved_byte_bins_2_avx2(x, m, c0, c1, b0, b1);
+#endif
+  (void)isa;
 #ifdef HBOS_DETAIL_BYTE_BINS_SSE2
-  if constexpr (std::is_same_v<Scalar, double>) {
+  if (r != 0) {
+    // the AVX2 body did every whole group of 16 rows
+  } else if constexpr (std::is_same_v<Scalar, double>) {
     // One row per vector: lane 0 is feature 0, lane 1 feature 1.
     const __m128d vlo = _mm_set_pd(c1.lo, c0.lo), vinv = _mm_set_pd(c1.inv, c0.inv),
                   vlast = _mm_set_pd(c1.last, c0.last);
@@ -147,11 +265,58 @@ void interleaved_byte_bins_2(const Scalar* x, std::size_t m, const ByteBinConsta
 /// about 16 bins is more than the scalar increments it replaces (docs/benchmarks.md).
 inline constexpr std::size_t kCompareCountMaxBins = 16;
 
+#if defined(HBOS_DETAIL_ISA_DISPATCH) && defined(HBOS_DETAIL_BYTE_BINS_SSE2)
+/// The AVX2 body of count_byte_indices: 32 indices per compare. Returns the indices counted.
+HBOS_DETAIL_TARGET_AVX2 inline std::size_t count_byte_indices_avx2(const std::uint8_t* index,
+                                                                   std::size_t m, std::size_t k,
+                                                                   std::uint64_t* counts) {
+  constexpr std::size_t max_vectors = 255;  // no byte lane can overflow in a round
+  const __m256i zero = _mm256_setzero_si256();
+  std::size_t i = 0;
+  while (m - i >= 32) {
+    const std::size_t vectors = std::min((m - i) / 32, max_vectors);
+    const std::uint8_t* p = index + i;
+    std::uint64_t counted = 0;
+    for (std::size_t b = 0; b + 1 < k; ++b) {
+      const __m256i bin = _mm256_set1_epi8(static_cast<char>(b));
+      __m256i lanes0 = zero, lanes1 = zero;
+      std::size_t v = 0;
+      for (; v + 2 <= vectors; v += 2) {
+        const __m256i x0 = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(p + 32 * v));
+        const __m256i x1 = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(p + 32 * v + 32));
+        lanes0 = _mm256_sub_epi8(lanes0, _mm256_cmpeq_epi8(x0, bin));
+        lanes1 = _mm256_sub_epi8(lanes1, _mm256_cmpeq_epi8(x1, bin));
+      }
+      if (v < vectors) {
+        const __m256i x0 = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(p + 32 * v));
+        lanes0 = _mm256_sub_epi8(lanes0, _mm256_cmpeq_epi8(x0, bin));
+      }
+      const __m256i sums =
+          _mm256_add_epi64(_mm256_sad_epu8(lanes0, zero), _mm256_sad_epu8(lanes1, zero));
+      const __m128i half =
+          _mm_add_epi64(_mm256_castsi256_si128(sums), _mm256_extracti128_si256(sums, 1));
+      const std::uint64_t c =
+          static_cast<std::uint64_t>(_mm_cvtsi128_si64(half)) +
+          static_cast<std::uint64_t>(_mm_cvtsi128_si64(_mm_unpackhi_epi64(half, half)));
+      counts[b] += c;
+      counted += c;
+    }
+    counts[k - 1] += 32 * vectors - counted;
+    i += 32 * vectors;
+  }
+  return i;
+}
+#endif
+
 /// Adds to counts[b] the number of entries of `index[0, m)` equal to b, for every b < k, where
 /// k <= kCompareCountMaxBins and every entry is below k.
 inline void count_byte_indices(const std::uint8_t* index, std::size_t m, std::size_t k,
-                               std::uint64_t* counts) {
+                               std::uint64_t* counts, Isa isa = active_isa()) {
   std::size_t i = 0;
+#if defined(HBOS_DETAIL_ISA_DISPATCH) && defined(HBOS_DETAIL_BYTE_BINS_SSE2)
+  if (isa == Isa::Avx2) i = count_byte_indices_avx2(index, m, k, counts);
+#endif
+  (void)isa;
 #ifdef HBOS_DETAIL_BYTE_BINS_SSE2
   // At most 255 vectors per round, so no byte lane can overflow.
   constexpr std::size_t max_vectors = 255;
