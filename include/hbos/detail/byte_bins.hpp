@@ -9,7 +9,9 @@
 /// Counting: 16 indices at a time are compared with each bin number (one compare and one
 /// subtract per bin and 16 values, the per-lane counts summed with `psadbw`) instead of one
 /// read-modify-write of a counter per value, which serialises when consecutive values fall in
-/// the same bin. Without SSE2 both are plain loops. Every path gives the same bytes and counts.
+/// the same bin. Without SSE2 both are plain loops. With run-time dispatch (detail/isa.hpp) each
+/// kernel also has an AVX2 body, taken on CPUs that have it. Every path gives the same bytes and
+/// counts.
 
 #include <algorithm>
 #include <cstddef>
