@@ -8,6 +8,7 @@
 #include <hbos/threshold.hpp>
 
 #include <utility>
+#include <vector>
 
 namespace hbos::cli {
 namespace {
@@ -101,12 +102,16 @@ void run_pyod(ScoredTable& out, const ScoreOptions& options, const CsvLayout& la
   RowStore& values = out.contributions;
   const Eigen::Index n = values.rows();
   const Eigen::Index d = values.cols();
-  auto matrix = values.matrix();
+  // Each feature on its own, as a one-feature PyodHbos would fit it (errors say "feature 0",
+  // renamed by for_each_feature), without the look-up grid such a model keeps for scoring new
+  // data: with few rows building it would cost more than the fit.
+  std::vector<double> terms(static_cast<std::size_t>(n));
   for_each_feature(layout, d, [&](Eigen::Index j) {
-    const auto model = PyodHbos<double>::fit(matrix.col(j), params);
+    double* column = values.data() + j;
+    const auto feature = PyodFeatureModel<double>::fit(column, d, n, 0, params, terms.data());
     // A one-feature decision score is -log2(density + alpha) of its bin: the contribution.
-    matrix.col(j) = model.decision_scores();
-    out.bins.push_back(model.bins(0));
+    for (Eigen::Index i = 0; i < n; ++i) column[i * d] = -terms[static_cast<std::size_t>(i)];
+    out.bins.push_back(feature.bins());
   });
   // PyOD sums the log terms with numpy's pairwise summation (a plain loop below 8 features);
   // the contributions are their negations, and negation commutes with rounding.

@@ -11,6 +11,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <random>
 #include <sstream>
@@ -310,6 +311,115 @@ TEST_CASE("pyod: scoring and counting equal the edge-by-edge definition", "[pyod
       CHECK(mismatches == 0);
     }
   }
+}
+
+namespace {
+
+/// Checks a feature fitted on its own (PyodFeatureModel, with or without a look-up grid) against
+/// the same column fitted as a one-feature PyodHbos (always with its grid), bit for bit: the
+/// histogram, the training terms, the terms of new values and the feature rebuilt from its parts.
+template <class Scalar>
+void check_feature_without_grid(const std::vector<Scalar>& column, const std::vector<Scalar>& probe,
+                                const hbos::PyodParams& params) {
+  using Vector = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
+  const auto n = static_cast<Index>(column.size());
+  const auto m = static_cast<Index>(probe.size());
+  const Eigen::Map<const Vector> x(column.data(), n);
+  const Eigen::Map<const Vector> x_new(probe.data(), m);
+  const auto whole = hbos::PyodHbos<Scalar>::fit(x, params);
+
+  std::vector<double> terms(column.size());
+  const auto f = hbos::PyodFeatureModel<Scalar>::fit(column.data(), 1, n, 0, params, terms.data());
+  const Index boundary = hbos::PyodFeatureModel<Scalar>::grid_min_samples(f.bins());
+  INFO("n " << n << ", bins " << f.bins() << ", grid from " << boundary << " samples");
+  CHECK(f.has_lookup_grid() == (n >= boundary));
+  CHECK(f.bin_edges() == whole.bin_edges(0));
+  CHECK(f.counts() == whole.counts(0));
+  CHECK(f.densities() == whole.densities(0));
+  // A one-feature score is -(0 + term): the training terms must be decision_scores() negated.
+  Index mismatches = 0;
+  for (Index i = 0; i < n; ++i) {
+    const auto score = static_cast<Scalar>(-terms[static_cast<std::size_t>(i)]);
+    mismatches += std::memcmp(&score, &whole.decision_scores()[i], sizeof(Scalar)) == 0 ? 0 : 1;
+  }
+  CHECK(mismatches == 0);
+
+  // New values: in range, on edges, and outside it within and beyond tol.
+  const Vector expected = whole.decision_function(x_new);
+  auto check_terms = [&](const hbos::PyodFeatureModel<Scalar>& g) {
+    std::vector<double> t(probe.size());
+    g.log_terms(probe.data(), 1, m, t.data());
+    Index wrong = 0;
+    for (Index i = 0; i < m; ++i) {
+      const auto score = static_cast<Scalar>(-t[static_cast<std::size_t>(i)]);
+      wrong += std::memcmp(&score, &expected[i], sizeof(Scalar)) == 0 ? 0 : 1;
+      wrong += t[static_cast<std::size_t>(i)] ==
+                       whole.lookup(0, probe[static_cast<std::size_t>(i)]).log_term
+                   ? 0
+                   : 1;
+    }
+    CHECK(wrong == 0);
+  };
+  check_terms(f);
+  const auto rebuilt =
+      hbos::PyodFeatureModel<Scalar>::from_parts(f.bin_edges(), f.counts(), n, 0, params);
+  CHECK(rebuilt.has_lookup_grid() == f.has_lookup_grid());
+  CHECK(rebuilt.densities() == whole.densities(0));
+  check_terms(rebuilt);
+  // A whole model assembled from the feature gets the grid back and scores the same.
+  std::vector<hbos::PyodFeatureModel<Scalar>> features{f};
+  const auto assembled = hbos::PyodHbos<Scalar>::from_features(std::move(features), params,
+                                                               Vector(whole.decision_scores()));
+  const Vector again = assembled.decision_function(x_new);
+  CHECK(std::memcmp(again.data(), expected.data(), sizeof(Scalar) * static_cast<std::size_t>(m)) ==
+        0);
+}
+
+template <class Scalar>
+void check_grid_boundary() {
+  std::mt19937_64 rng(23);
+  std::normal_distribution<double> normal;
+  std::uniform_int_distribution<int> integer(0, 40);
+  // Integers in [0, 40] sit on interior edges for most B (counted in the bin above, scored with
+  // the one below); the normal and heavy-tailed columns cover uneven bins.
+  for (const Index bins : {Index{3}, Index{10}, Index{40}, Index{2000}, Index{40000}, Index{0}}) {
+    hbos::PyodParams params;
+    params.auto_bins = bins == 0;
+    params.n_bins = bins == 0 ? 10 : bins;
+    const Index boundary = hbos::PyodFeatureModel<Scalar>::grid_min_samples(params.n_bins);
+    for (const Index n : {Index{2}, Index{5}, boundary - 1, boundary, boundary + 1}) {
+      for (int kind = 0; kind < 3; ++kind) {
+        INFO("n_bins " << (bins == 0 ? "auto" : std::to_string(bins)) << ", kind " << kind);
+        if (params.auto_bins && n <= 3) continue;
+        std::vector<Scalar> column(static_cast<std::size_t>(n));
+        for (Scalar& v : column) {
+          const double x = kind == 0   ? integer(rng)
+                           : kind == 1 ? normal(rng)
+                                       : std::exp(3 * normal(rng));
+          v = static_cast<Scalar>(x);
+        }
+        std::vector<Scalar> probe(column);
+        const auto [lo, hi] = std::minmax_element(column.begin(), column.end());
+        const double width = (static_cast<double>(*hi) - static_cast<double>(*lo)) / 10.0;
+        for (const double offset : {0.1, 0.3, 0.49, 0.51, 0.7, 2.0, 100.0}) {
+          probe.push_back(static_cast<Scalar>(static_cast<double>(*lo) - offset * width));
+          probe.push_back(static_cast<Scalar>(static_cast<double>(*hi) + offset * width));
+        }
+        for (Scalar& v : column) probe.push_back(static_cast<Scalar>(v * Scalar(1.3) - Scalar(3)));
+        check_feature_without_grid<Scalar>(column, probe, params);
+      }
+    }
+  }
+}
+
+}  // namespace
+
+TEST_CASE("pyod: a feature fitted without its look-up grid scores bit for bit like one with it",
+          "[pyod]") {
+  // PyodFeatureModel skips the grid below grid_min_samples(B) samples and finds each value's bin
+  // by search; both sides of that boundary must give the whole model's counts and terms.
+  check_grid_boundary<double>();
+  check_grid_boundary<float>();
 }
 
 TEST_CASE("pyod: the sampled percentile equals numpy's, ties and adversarial orders included",

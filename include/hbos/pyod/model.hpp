@@ -325,6 +325,8 @@ class PyodHbos {
       detail::require(params.auto_bins || f.bins() == params.n_bins, "feature ", j, ": ", f.bins(),
                       " bins but n_bins = ", params.n_bins);
       model.features_.push_back(std::move(f.f_));
+      // A whole model scores data of any size later: every feature gets its grid.
+      add_grid(model.features_.back());
     }
     model.set_training_scores(std::move(training_scores));
     return model;
@@ -357,7 +359,7 @@ class PyodHbos {
     for (Eigen::Index j = 0; j < d; ++j) {
       model.features_.push_back(feature_from_parts(edges[static_cast<std::size_t>(j)],
                                                    counts[static_cast<std::size_t>(j)], n, j,
-                                                   params, column, scored_bins));
+                                                   params, GridRule::Always, column, scored_bins));
     }
     model.set_training_scores(std::move(training_scores));
     return model;
@@ -381,6 +383,8 @@ class PyodHbos {
   /// needs a comparison, and each cell stores that edge with the log terms of both sides. Values
   /// outside [e_0, e_B], and cells holding several edges (past 65536 bins, or edges crowded by
   /// rounding), take the general path: digitize against the edges, then PyOD's branches.
+  /// A feature without a grid (cells == 0, see GridRule) takes the general path for every value:
+  /// the same bins, found by a search that starts at the right bin give or take one.
   struct Feature {
     Eigen::VectorXd edges;      // B + 1, strictly increasing
     Eigen::VectorXd densities;  // B
@@ -394,10 +398,11 @@ class PyodHbos {
     double tol_below = 0.0;     // (e_1 - e_0) * tol
     double tol_above = 0.0;     // (e_B - e_{B-1}) * tol
     double cell_scale = 0.0;    // nominal cell count / (e_B - e_0)
-    Eigen::Index cells = 1;
+    Eigen::Index cells = 0;     // 0: no grid
     std::vector<Cell> grid;
 
     [[nodiscard]] Eigen::Index bins() const { return edges.size() - 1; }  // set first
+    [[nodiscard]] bool has_grid() const { return cells > 0; }
 
     /// Cell of x in [lo, hi]: in [0, cells), since it is monotone in x and cells = cell(hi) + 1.
     [[nodiscard]] Eigen::Index cell(double x) const {
@@ -429,6 +434,22 @@ class PyodHbos {
 
   PyodHbos() = default;
 
+  /// Whether a feature gets its look-up grid. A whole PyodHbos scores data of any size later, so
+  /// its features always have one; a feature on its own (PyodFeatureModel) has one only when it
+  /// counts at least as many values as the grid has cells, since building the grid costs about
+  /// as much as that many searches (a wide file's feature of two values would otherwise spend
+  /// nearly all its time on 1024 cells).
+  enum class GridRule { Always, IfPays };
+
+  /// The grid's nominal cell count for B bins: 64 cells per bin, at least 1024, at most 65536.
+  [[nodiscard]] static Eigen::Index nominal_cells(Eigen::Index B) {
+    return std::min<Eigen::Index>(std::max<Eigen::Index>(1024, 64 * B), 65536);
+  }
+
+  [[nodiscard]] static bool wants_grid(GridRule rule, Eigen::Index values, Eigen::Index B) {
+    return rule == GridRule::Always || values >= nominal_cells(B);
+  }
+
   // The sharded fit (hbos/pyod/merge.hpp) builds models from merged counts.
   template <class>
   friend class PyodHistograms;
@@ -445,7 +466,7 @@ class PyodHbos {
     model.params_ = params;
     for (std::size_t j = 0; j < edges.size(); ++j) {
       Layout layout;
-      Feature f = lay_out(edges[j], layout);
+      Feature f = lay_out(edges[j], layout, true);
       f.counts = Eigen::Map<const Counts>(counts[j].data(), f.bins());
       finish(f, layout, n, static_cast<Eigen::Index>(j), model.params_);
       model.features_.push_back(std::move(f));
@@ -512,7 +533,7 @@ class PyodHbos {
     detail::AutoBinsScratch<Scalar> scratch;
     for (Eigen::Index j = 0; j < X.cols; ++j) {
       model.features_.push_back(fit_column(X.data + j * X.col_stride, X.row_stride, n, j, params,
-                                           scored_bins.get() + j * n, scratch));
+                                           GridRule::Always, scored_bins.get() + j * n, scratch));
       bins_stored = bins_stored && model.features_.back().bins() <= kMaxStoredBins;
     }
     if (!bins_stored) {
@@ -548,7 +569,7 @@ class PyodHbos {
   /// also the first one of X), its bin count, numpy's histogram. Writes the bins the values are
   /// scored with (see fit_feature).
   [[nodiscard]] static Feature fit_column(const Scalar* column, Eigen::Index stride, Eigen::Index n,
-                                          Eigen::Index j, const PyodParams& params,
+                                          Eigen::Index j, const PyodParams& params, GridRule grid,
                                           std::uint16_t* scored_bins,
                                           detail::AutoBinsScratch<Scalar>& scratch) {
     const auto [lo, hi] = column_range(column, stride, n);
@@ -571,14 +592,14 @@ class PyodHbos {
     const Eigen::Index B = params.auto_bins
                                ? detail::pyod_optimal_bins(column, stride, n, lo, hi, scratch)
                                : params.n_bins;
-    return fit_feature(column, stride, n, j, B, lo, hi, params, scored_bins);
+    return fit_feature(column, stride, n, j, B, lo, hi, params, grid, scored_bins);
   }
 
   /// Feature j rebuilt from its stored edges and counts of n samples (see from_parts).
   /// `column` and `scored_bins` are scratch (resized to n).
   [[nodiscard]] static Feature feature_from_parts(const Eigen::VectorXd& e, const Counts& c,
                                                   Eigen::Index n, Eigen::Index j,
-                                                  const PyodParams& params,
+                                                  const PyodParams& params, GridRule grid,
                                                   std::vector<Scalar>& column,
                                                   std::vector<std::uint16_t>& scored_bins) {
     column.resize(static_cast<std::size_t>(n));
@@ -602,7 +623,8 @@ class PyodHbos {
     }
     detail::require(filled == n, "feature ", j, ": the counts add up to ", filled, ", not to the ",
                     n, " training samples");
-    Feature f = fit_feature(column.data(), 1, n, j, B, e[0], e[B], params, scored_bins.data());
+    Feature f =
+        fit_feature(column.data(), 1, n, j, B, e[0], e[B], params, grid, scored_bins.data());
     detail::require(f.edges == e, "feature ", j,
                     ": the edges are not numpy's edges of their range [", e[0], ", ", e[B], "]");
     detail::require(f.counts == c, "feature ", j,
@@ -623,6 +645,19 @@ class PyodHbos {
     const Cell* grid = f.grid.data();
     return detail::with_stride(stride, [&](auto step) {
       Eigen::Index bad = 0;
+      if (!f.has_grid()) {
+        for (Eigen::Index r = 0; r < m; ++r) {
+          const double v = static_cast<double>(x[r * step]);
+          bad += std::isfinite(v) ? 0 : 1;
+          const double t = f.term_exact(v);
+          if constexpr (kAdd) {
+            dst[r] += t;
+          } else {
+            dst[r] = t;
+          }
+        }
+        return bad;
+      }
       for (Eigen::Index r = 0; r < m; ++r) {
         const double v = static_cast<double>(x[r * step]);
         double t;
@@ -656,7 +691,8 @@ class PyodHbos {
     double edge = std::numeric_limits<double>::infinity();
     Eigen::Index first_bin = 0;
   };
-  /// What counting and the look-up grid need to know of a feature's edges, cell by cell.
+  /// What counting and the look-up grid need to know of a feature's edges, cell by cell (empty
+  /// for a feature without a grid).
   struct Layout {
     std::vector<Eigen::Index> edges_in;  // interior edges per cell
     std::vector<CellBins> cell_bins;
@@ -668,9 +704,11 @@ class PyodHbos {
   [[nodiscard]] static Feature fit_feature(const Scalar* column, Eigen::Index stride,
                                            Eigen::Index n, Eigen::Index j, Eigen::Index B,
                                            double min_value, double max_value,
-                                           const PyodParams& params, std::uint16_t* scored_bins) {
+                                           const PyodParams& params, GridRule grid,
+                                           std::uint16_t* scored_bins) {
     Layout layout;
-    Feature f = lay_out(detail::pyod_bin_edges(j, B, min_value, max_value), layout);
+    Feature f =
+        lay_out(detail::pyod_bin_edges(j, B, min_value, max_value), layout, wants_grid(grid, n, B));
     const std::vector<CellBins>& cell_bins = layout.cell_bins;
 
     // Count (bin c: e_c <= x < e_{c+1}, last closed) and record the scored bin (PyOD's look-up:
@@ -678,35 +716,48 @@ class PyodHbos {
     // chains of increments of one counter.
     std::vector<Eigen::Index> counts(static_cast<std::size_t>(4 * B), 0);
     Eigen::Index non_finite = 0;
-    auto count_one = [&](double x, Eigen::Index* count, std::uint16_t* scored_bin) {
+    auto count_one = [&](double x, Eigen::Index* count, std::uint16_t* scored_bin, auto on_grid) {
       // Outside [lo, hi] only with a NaN in the column: then Eigen's fast min/max may even have
       // skipped the true extremes. The column is rescanned for the NaN below.
       if (!(x >= f.lo && x <= f.hi)) {
         ++non_finite;
         return;
       }
-      const CellBins cell = cell_bins[static_cast<std::size_t>(f.cell(x))];
-      Eigen::Index counted = cell.first_bin + (cell.edge <= x ? 1 : 0);
-      Eigen::Index scored = cell.first_bin + (cell.edge < x ? 1 : 0);
-      if (cell.first_bin < 0) f.exact_bins(x, counted, scored);
+      Eigen::Index counted = 0;
+      Eigen::Index scored = 0;
+      if constexpr (decltype(on_grid)::value) {
+        const CellBins cell = cell_bins[static_cast<std::size_t>(f.cell(x))];
+        counted = cell.first_bin + (cell.edge <= x ? 1 : 0);
+        scored = cell.first_bin + (cell.edge < x ? 1 : 0);
+        if (cell.first_bin < 0) f.exact_bins(x, counted, scored);
+      } else {
+        f.exact_bins(x, counted, scored);
+      }
       ++count[counted];
       *scored_bin = static_cast<std::uint16_t>(scored);  // truncated when B > kMaxStoredBins
     };
-    detail::with_stride(stride, [&](auto step) {
-      Eigen::Index* c0 = counts.data();
-      Eigen::Index* c1 = c0 + B;
-      Eigen::Index* c2 = c1 + B;
-      Eigen::Index* c3 = c2 + B;
-      auto at = [&](Eigen::Index i) { return static_cast<double>(column[i * step]); };
-      Eigen::Index i = 0;
-      for (; i + 4 <= n; i += 4) {
-        count_one(at(i), c0, scored_bins + i);
-        count_one(at(i + 1), c1, scored_bins + i + 1);
-        count_one(at(i + 2), c2, scored_bins + i + 2);
-        count_one(at(i + 3), c3, scored_bins + i + 3);
-      }
-      for (; i < n; ++i) count_one(at(i), c0, scored_bins + i);
-    });
+    auto count_all = [&](auto on_grid) {
+      detail::with_stride(stride, [&](auto step) {
+        Eigen::Index* c0 = counts.data();
+        Eigen::Index* c1 = c0 + B;
+        Eigen::Index* c2 = c1 + B;
+        Eigen::Index* c3 = c2 + B;
+        auto at = [&](Eigen::Index i) { return static_cast<double>(column[i * step]); };
+        Eigen::Index i = 0;
+        for (; i + 4 <= n; i += 4) {
+          count_one(at(i), c0, scored_bins + i, on_grid);
+          count_one(at(i + 1), c1, scored_bins + i + 1, on_grid);
+          count_one(at(i + 2), c2, scored_bins + i + 2, on_grid);
+          count_one(at(i + 3), c3, scored_bins + i + 3, on_grid);
+        }
+        for (; i < n; ++i) count_one(at(i), c0, scored_bins + i, on_grid);
+      });
+    };
+    if (f.has_grid()) {
+      count_all(std::true_type{});
+    } else {
+      count_all(std::false_type{});
+    }
     for (Eigen::Index i = 0; non_finite > 0 && i < n; ++i) {
       detail::require(std::isfinite(column[i * stride]), "X(", i, ", ", j,
                       ") is not finite: ", column[i * stride]);
@@ -721,20 +772,28 @@ class PyodHbos {
     return f;
   }
 
-  /// A feature's edges (detail::pyod_bin_edges) laid out on its look-up grid.
-  [[nodiscard]] static Feature lay_out(const Eigen::VectorXd& edges, Layout& layout) {
+  /// A feature's edges (detail::pyod_bin_edges), laid out on its look-up grid if `grid`.
+  [[nodiscard]] static Feature lay_out(const Eigen::VectorXd& edges, Layout& layout, bool grid) {
     Feature f;
     f.edges = edges;  // B + 1 values, once per feature
     const Eigen::Index B = f.bins();
     f.lo = f.edges[0];
     f.hi = f.edges[B];
     f.norm = static_cast<double>(B) / (f.hi - f.lo);
+    if (grid) {
+      lay_out_grid(f, layout);
+    } else {
+      layout.edges_in.clear();
+      layout.cell_bins.clear();
+    }
+    return f;
+  }
 
-    // The grid: 64 cells per bin (at least 1024, at most 65536), plus the cell of e_B itself,
-    // which rounding may put one past the nominal count.
-    const Eigen::Index nominal_cells =
-        std::min<Eigen::Index>(std::max<Eigen::Index>(1024, 64 * B), 65536);
-    f.cell_scale = static_cast<double>(nominal_cells) / (f.hi - f.lo);
+  /// The cells of f's grid and which edges fall in each (f's edges set, see lay_out).
+  static void lay_out_grid(Feature& f, Layout& layout) {
+    const Eigen::Index B = f.bins();
+    // The nominal cells, plus the cell of e_B itself, which rounding may put one past them.
+    f.cell_scale = static_cast<double>(nominal_cells(B)) / (f.hi - f.lo);
     if (!std::isfinite(f.cell_scale)) f.cell_scale = 0.0;  // a range of denormals: one cell
     f.cells = f.cell(f.hi) + 1;
     std::vector<Eigen::Index>& edges_in = layout.edges_in;
@@ -748,17 +807,21 @@ class PyodHbos {
       if (inside == 1) cell.edge = f.edges[below + 1];
       below += inside;
     }
-    return f;
   }
 
-  /// Densities, log terms and the look-up grid of a laid-out feature from its counts (f.counts,
-  /// n samples in all): the same code for fit and for counts merged from shards.
+  /// Gives a finished feature without a grid the grid it would have been fitted with.
+  static void add_grid(Feature& f) {
+    if (f.has_grid()) return;
+    Layout layout;
+    lay_out_grid(f, layout);
+    fill_grid(f, layout);
+  }
+
+  /// Densities, log terms and (if laid out) the look-up grid of a laid-out feature from its
+  /// counts (f.counts, n samples in all): the same code for fit and for counts merged from shards.
   static void finish(Feature& f, const Layout& layout, Eigen::Index n, Eigen::Index j,
                      const PyodParams& params) {
     const Eigen::Index B = f.bins();
-    const std::vector<Eigen::Index>& edges_in = layout.edges_in;
-    const std::vector<CellBins>& cell_bins = layout.cell_bins;
-
     f.densities.resize(B);
     f.log_terms.resize(B);
     const double n_double = static_cast<double>(n);
@@ -775,7 +838,13 @@ class PyodHbos {
     f.log_min = f.log_terms.minCoeff(&f.sparsest);
     f.tol_below = (f.edges[1] - f.edges[0]) * params.tol;
     f.tol_above = (f.edges[B] - f.edges[B - 1]) * params.tol;
+    if (f.has_grid()) fill_grid(f, layout);
+  }
 
+  /// The look-up grid of a laid-out feature whose log terms are set.
+  static void fill_grid(Feature& f, const Layout& layout) {
+    const std::vector<Eigen::Index>& edges_in = layout.edges_in;
+    const std::vector<CellBins>& cell_bins = layout.cell_bins;
     f.grid.resize(static_cast<std::size_t>(f.cells));
     constexpr double kInf = std::numeric_limits<double>::infinity();
     constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
@@ -888,7 +957,8 @@ class PyodFeatureModel {
     detail::AutoBinsScratch<Scalar> scratch;
     PyodFeatureModel out;
     out.j_ = j;
-    out.f_ = Model::fit_column(column, stride, n, j, params, scored_bins.data(), scratch);
+    out.f_ = Model::fit_column(column, stride, n, j, params, Model::GridRule::IfPays,
+                               scored_bins.data(), scratch);
     // As PyodHbos::fit: the scored bins of the counting pass, or beyond 65536 bins the values
     // scored like new data (the same terms, by the model's invariant).
     if (out.f_.bins() <= Model::kMaxStoredBins) {
@@ -914,7 +984,8 @@ class PyodFeatureModel {
     std::vector<std::uint16_t> scored_bins;
     PyodFeatureModel out;
     out.j_ = j;
-    out.f_ = Model::feature_from_parts(edges, counts, n, j, params, column, scored_bins);
+    out.f_ = Model::feature_from_parts(edges, counts, n, j, params, Model::GridRule::IfPays, column,
+                                       scored_bins);
     return out;
   }
 
@@ -928,6 +999,15 @@ class PyodFeatureModel {
   [[nodiscard]] const Counts& counts() const { return f_.counts; }
   /// PyOD's `hist_[:, j]` (B densities).
   [[nodiscard]] const Eigen::VectorXd& densities() const { return f_.densities; }
+
+  /// Whether log_terms() looks values up on a grid (built when the feature was fitted on, or
+  /// rebuilt from, at least grid_min_samples(bins()) samples) or finds each value's bin by
+  /// search. Both give the same bits; the grid is faster per value but costs its cells to build.
+  [[nodiscard]] bool has_lookup_grid() const { return f_.has_grid(); }
+  /// The fewest training samples for which a feature of `bins` bins builds its look-up grid.
+  [[nodiscard]] static Eigen::Index grid_min_samples(Eigen::Index bins) {
+    return Model::nominal_cells(bins);
+  }
 
   /// out[i] = the log term of x[i * stride] (i < m): log2(density + alpha) of the bin PyOD scores
   /// it with. \throws InvalidArgument naming X(i, j) for a value that is not finite.
