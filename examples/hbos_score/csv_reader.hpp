@@ -84,9 +84,10 @@ struct CsvLayout {
   [[nodiscard]] Eigen::Index n_features() const {
     return static_cast<Eigen::Index>(feature_columns.size());
   }
-  /// Name of feature j.
-  [[nodiscard]] const std::string& feature_name(Eigen::Index j) const {
-    return column_names[feature_columns[static_cast<std::size_t>(j)]];
+  /// Name of feature j (`x<j>` made up here when `column_names` was left empty).
+  [[nodiscard]] std::string feature_name(Eigen::Index j) const {
+    const std::size_t column = feature_columns[static_cast<std::size_t>(j)];
+    return column_names.empty() ? "x" + std::to_string(column) : column_names[column];
   }
 };
 

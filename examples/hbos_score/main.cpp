@@ -207,6 +207,9 @@ int score_main(int argc, char** argv) {
     if (shifts->count() > 0) options.shifts = raw.shifts;
     if (tail->count() > 0) options.tail = tails.at(lower(raw.tail));
     if (periodic->count() > 0) options.periodic_columns = split_list(raw.periodic_columns);
+    // A file without a header gets its names x<j> when they are printed (CsvLayout::feature_name)
+    // rather than one string per column while it is read, unless columns are selected by name.
+    options.csv.default_names = !options.periodic_columns.empty();
     if (period_start->count() > 0) options.period_start = raw.period_start;
     if (period->count() > 0) options.period = raw.period;
     if (alpha->count() > 0) options.alpha = raw.alpha;

@@ -141,6 +141,10 @@ TEST_CASE("default_names false: no x<j> names for a file without a header", "[cs
   CHECK(t.column_names.empty());
   CHECK(t.n_features() == 3);
   CHECK(t.features == parse("0,1,2\n3,4,5\n").features);
+  // feature_name() makes the name the default would have stored (the one-shot form prints it).
+  const CsvTable named = parse("0,1,2\n3,4,5\n");
+  for (Eigen::Index j = 0; j < 3; ++j) CHECK(t.feature_name(j) == named.feature_name(j));
+  CHECK(t.feature_name(2) == "x2");
   CHECK_THROWS_WITH(parse("0,1,2\n3,x,5\n", options),
                     Catch::Contains("\"x\" is not a number (field 2, \"x1\")"));
   CHECK(parse("a,b\n1,2\n", options).column_names == std::vector<std::string>{"a", "b"});
@@ -148,6 +152,7 @@ TEST_CASE("default_names false: no x<j> names for a file without a header", "[cs
   const CsvTable labelled = parse("0,1,1\n3,4,0\n", options);
   CHECK(labelled.n_features() == 2);
   CHECK(labelled.labels == Eigen::Vector2i(1, 0));
+  CHECK(labelled.feature_name(1) == "x1");
 }
 
 TEST_CASE("other delimiters", "[csv]") {

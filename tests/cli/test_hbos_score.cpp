@@ -577,3 +577,49 @@ TEST_CASE("hbos-score fit / score --mode pyod on a wide file: one feature at a t
   CHECK(r.exit_code == 2);
   CHECK_THAT(r.err, Catch::Contains("wide_pyod_damaged.hbos', line 10 (f.lo): 'x"));
 }
+
+TEST_CASE("hbos-score: the one-shot form of a file without a header names its columns x<j>",
+          "[cli][hbos_score]") {
+  // The names are made when printed, not kept per column; the output and summary name the
+  // columns as before, a made-up name still selects a periodic column, and the PyOD-mode scores
+  // (each feature fitted on its own, without a look-up grid for 3 rows) are the library's.
+  const fs::path dir = work_dir();
+  const fs::path csv = dir / "unnamed.csv";
+  Eigen::MatrixXd x(3, 12);
+  {
+    std::ofstream out(csv);
+    for (Eigen::Index i = 0; i < x.rows(); ++i) {
+      for (Eigen::Index j = 0; j < x.cols(); ++j) {
+        x(i, j) = static_cast<double>((i * 7 + j * 3) % 10);
+        out << (j > 0 ? "," : "") << x(i, j);
+      }
+      out << '\n';
+    }
+  }
+  std::vector<std::string> expected_names = {"score", "label"};
+  for (int j = 0; j < 12; ++j) expected_names.push_back("contrib_x" + std::to_string(j));
+  const fs::path output = dir / "unnamed_scores.csv";
+  // Auto bins need more than 3 rows: the error names the first column by its made-up name.
+  const Run refused = hbos_score(
+      "unnamed_auto", {csv.string(), "--mode", "pyod", "--bins", "auto", "-o", output.string()});
+  CHECK(refused.exit_code != 0);
+  CHECK_THAT(refused.err, Catch::Contains("feature 0 (\"x0\")"));
+  for (const bool pyod : {false, true}) {
+    std::vector<std::string> args = {csv.string(), "--contributions", "-o", output.string()};
+    if (pyod) args.insert(args.end(), {"--mode", "pyod"});
+    const Run run = hbos_score("unnamed", args);
+    INFO(run.err);
+    REQUIRE(run.exit_code == 0);
+    CHECK_THAT(run.err, Catch::Contains("largest contributions: x"));
+    const auto result = read_output(slurp(output));
+    CHECK(result.column_names == expected_names);
+    if (pyod) {
+      const Eigen::VectorXd scores = result.features.col(0);
+      CHECK(scores == hbos::PyodHbosd::fit(x).decision_scores());
+    }
+  }
+  const Run periodic = hbos_score(
+      "unnamed_periodic", {csv.string(), "--periodic-columns", "x3", "-q", "-o", output.string()});
+  INFO(periodic.err);
+  CHECK(periodic.exit_code == 0);
+}
