@@ -47,6 +47,10 @@ class DataMatrix {
   /// otherwise gathered into `scratch`. Valid until `scratch` or the matrix changes.
   [[nodiscard]] const double* column(Eigen::Index j, std::vector<double>& scratch) const;
 
+  /// The buffer, handed over (row-major rows x cols, or cols x rows when column_major()); the
+  /// matrix is empty afterwards.
+  [[nodiscard]] RowStore release() && { return std::move(values_); }
+
  private:
   RowStore values_;
   bool column_major_ = false;

@@ -1,8 +1,8 @@
-// hbos-score: scores the rows of a numeric CSV file with HBOS and writes scores, labels and
+// hbos-score: scores the rows of a numeric CSV or .npy file with HBOS and writes scores, labels and
 // (on request) per-feature contributions as CSV.
 //
-// Exit codes: 0 success; 2 bad options, malformed CSV (reported as file:line:column) or data the
-// model rejects; 1 anything else (the output cannot be written, out of memory).
+// Exit codes: 0 success; 2 bad options, malformed CSV (reported as file:line:column) or .npy, or
+// data the model rejects; 1 anything else (the output cannot be written, out of memory).
 
 #include <fmt/format.h>
 #include <CLI/CLI.hpp>
@@ -22,6 +22,7 @@
 #include "common/cli_validators.hpp"
 #include "csv_reader.hpp"
 #include "fit_command.hpp"
+#include "npy_reader.hpp"
 #include "results_csv.hpp"
 #include "score_command.hpp"
 #include "score_input.hpp"
@@ -100,7 +101,8 @@ int run(const ScoreOptions& options) {
 /// Parses the command line and runs; exceptions it does not map to an exit code escape to main.
 int score_main(int argc, char** argv) {
   CLI::App app{
-      "Scores every row of a numeric CSV file (rows = samples, columns = features) with HBOS, the "
+      "Scores every row of a numeric CSV or .npy file (rows = samples, columns = features) with "
+      "HBOS, the "
       "histogram-based outlier score: higher = more anomalous. Writes CSV with columns score,label "
       "(label 1 = outlier) and, with --contributions, contrib_<feature> per feature; prints a "
       "summary to standard error.",
@@ -110,7 +112,9 @@ int score_main(int argc, char** argv) {
       "  hbos-score data.csv --label-column label   # default mode, ROC-AUC vs labels\n"
       "  hbos-score data.csv --mode pyod -o out.csv # PyOD 3.6.5's HBOS, number for number\n"
       "  hbos-score - --bins sturges --threshold mad:3 < data.csv\n"
-      "Exit codes: 0 success; 2 bad options, malformed CSV (file:line:column) or rejected data; "
+      "  hbos-score data.npy -o out.csv             # numpy.save's float64/float32 arrays\n"
+      "Exit codes: 0 success; 2 bad options, malformed CSV (file:line:column) or .npy, or rejected "
+      "data; "
       "1 other failures (e.g. the output cannot be written).\n");
   app.set_version_flag("--version", fmt::format("hbos-score {}.{}.{}", hbos::kVersionMajor,
                                                 hbos::kVersionMinor, hbos::kVersionPatch));
@@ -118,7 +122,9 @@ int score_main(int argc, char** argv) {
   ScoreOptions options;
   RawOptions raw;
 
-  app.add_option("input", options.input, "CSV file, or - for standard input")->required();
+  app.add_option("input", options.input,
+                 "CSV file, - for standard input, or .npy file (float64/float32; 1-D or 2-D)")
+      ->required();
   app.add_option("-o,--output", options.output,
                  "result CSV, written atomically (temporary file + rename); - = standard output")
       ->capture_default_str();
@@ -227,6 +233,9 @@ int score_main(int argc, char** argv) {
     return run(options);
   } catch (const CsvError& e) {
     std::fprintf(stderr, "%s\n", e.what());  // file:line:column: message, as compilers print
+    return kExitBadInput;
+  } catch (const NpyError& e) {
+    std::fprintf(stderr, "hbos-score: error: %s\n", e.what());
     return kExitBadInput;
   } catch (const std::invalid_argument& e) {
     // hbos::InvalidArgument (data or parameters the model rejects) and our own option checks.

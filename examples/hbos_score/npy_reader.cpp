@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
@@ -154,8 +155,48 @@ bool is_npy_path(const std::string& path) {
          path.compare(path.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
+void refuse_csv_options(const std::string& path, const CsvOptions& csv) {
+  const auto refuse = [&](const std::string& option, const std::string& why) {
+    fail(path, option + " is for CSV input: " + why);
+  };
+  const std::string features_only =
+      "a .npy array is all features (save it without the column, or use a CSV file)";
+  if (!csv.label_column.empty()) refuse("--label-column " + csv.label_column, features_only);
+  if (!csv.ignore_columns.empty()) refuse("--ignore-columns", features_only);
+  const std::string no_text = "a .npy file has no header line and no delimiter";
+  if (csv.header == HeaderMode::Present) refuse("--header", no_text);
+  if (csv.header == HeaderMode::Absent) refuse("--no-header", no_text);
+  if (csv.delimiter != CsvOptions{}.delimiter) refuse("--delimiter", no_text);
+}
+
+RowStore read_npy_rows(const std::string& path, const CsvOptions& csv) {
+  refuse_csv_options(path, csv);
+  DataMatrix x = std::move(read_npy(path).values);
+  // The one-shot scorer fits one feature at a time, whose own errors know only the row: name
+  // the value here, by row and column, as the CSV reader does by line and field.
+  const auto view = x.matrix();
+  for (Eigen::Index j = 0; j < view.cols(); ++j) {
+    for (Eigen::Index i = 0; i < view.rows(); ++i) {
+      if (!std::isfinite(view(i, j))) {
+        fail(path, "row " + std::to_string(i) + ", column " + std::to_string(j) + " (x" +
+                       std::to_string(j) + ") is not finite (" + std::to_string(view(i, j)) +
+                       "); NaN and infinity are not allowed");
+      }
+    }
+  }
+  if (!x.column_major()) return std::move(x).release();
+  RowStore rows(x.cols());
+  rows.resize_rows(x.rows());
+  Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
+      rows.data(), x.rows(), x.cols()) = view;
+  return rows;
+}
+
 DataMatrix read_data(const std::string& path, const CsvOptions& csv) {
-  if (is_npy_path(path)) return std::move(read_npy(path).values);
+  if (is_npy_path(path)) {
+    refuse_csv_options(path, csv);
+    return std::move(read_npy(path).values);
+  }
   // Rows go into a RowStore as they are parsed; the layout stays the parser's, not copied, and
   // holds no made-up names for a file without a header (32 bytes a column).
   RowStore values;

@@ -40,6 +40,17 @@ struct NpyArray {
 /// Whether `path` names a `.npy` file (by its suffix): how read_data decides.
 [[nodiscard]] bool is_npy_path(const std::string& path);
 
+/// Refuses the CSV-only options for the .npy file `path` (a label or ignored column, a header
+/// mode, a delimiter): a .npy array is all features, and an option that would be dropped without
+/// a word would fit or score other data than the user asked for. \throws NpyError naming the
+/// file and the option.
+void refuse_csv_options(const std::string& path, const CsvOptions& csv);
+
+/// The rows of a .npy file as the one-shot scorer holds them: row-major, in one buffer (a
+/// Fortran-order file is transposed into a second buffer, then the first is freed).
+/// \throws NpyError as read_npy, or for a CSV-only option (refuse_csv_options).
+[[nodiscard]] RowStore read_npy_rows(const std::string& path, const CsvOptions& csv);
+
 /// The feature matrix of `path`, held once: read_npy for a `.npy` file, else CSV read with `csv`
 /// row by row into a row-major store (features only: a label column or ignored columns are
 /// dropped; the column names are not kept). \throws NpyError or CsvError.

@@ -36,6 +36,7 @@ void for_each_row_block(const std::string& path, const CsvOptions& csv,
                         const std::function<void(const RowBlock&)>& on_block) {
   using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
   if (is_npy_path(path)) {
+    refuse_csv_options(path, csv);
     // Held once, in the file's order: a C-order file's blocks are handed over in place, a
     // Fortran-order file's copied a block at a time.
     const DataMatrix x = std::move(read_npy(path).values);

@@ -1,12 +1,38 @@
 #include "score_input.hpp"
 
+#include <numeric>
 #include <stdexcept>
+#include <string>
 #include <utility>
 #include <vector>
 
+#include "npy_reader.hpp"
+
 namespace hbos::cli {
 
+namespace {
+
+ScoreInput read_npy_input(const std::string& path, const CsvOptions& options) {
+  ScoreInput input;
+  input.npy = true;
+  input.values = read_npy_rows(path, options);
+  input.n_rows = input.values.rows();
+  const auto d = static_cast<std::size_t>(input.values.cols());
+  input.feature_columns.resize(d);
+  std::iota(input.feature_columns.begin(), input.feature_columns.end(), std::size_t{0});
+  // Names only where columns are chosen by name (--periodic-columns), as for a CSV file without
+  // a header: messages make x<j> when they print it.
+  if (options.default_names) {
+    input.column_names.reserve(d);
+    for (std::size_t j = 0; j < d; ++j) input.column_names.push_back("x" + std::to_string(j));
+  }
+  return input;
+}
+
+}  // namespace
+
 ScoreInput read_score_input(const std::string& path, const CsvOptions& options) {
+  if (is_npy_path(path)) return read_npy_input(path, options);
   ScoreInput input;
   std::vector<int> labels;
   CsvHandlers handlers;

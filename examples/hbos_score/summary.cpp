@@ -15,7 +15,9 @@ namespace {
 std::string describe_input(const ScoreOptions& options, const ScoreInput& table) {
   const std::string source = options.input == "-" ? "<stdin>" : options.input;
   std::string header;
-  if (table.has_header) {
+  if (table.npy) {
+    header = ".npy array";
+  } else if (table.has_header) {
     header = options.csv.header == HeaderMode::Auto ? "header detected" : "header";
   } else {
     header = options.csv.header == HeaderMode::Auto
@@ -101,8 +103,11 @@ std::string describe_top(const ScoreOptions& options, const ScoreInput& table,
     }
     const std::string truth =
         table.label_column ? fmt::format("  labelled {}", table.labels[i]) : "";
-    out += fmt::format("  line {:<7} score {:<10.4g} flagged {}{}  largest contributions: {}\n",
-                       table.line_of(i), scored.scores[i], scored.outlier[i], truth, why);
+    // A .npy row by its index, as numpy would address it; a CSV row by its line.
+    const std::string where =
+        table.npy ? fmt::format("row {:<8}", i) : fmt::format("line {:<7}", table.line_of(i));
+    out += fmt::format("  {} score {:<10.4g} flagged {}{}  largest contributions: {}\n", where,
+                       scored.scores[i], scored.outlier[i], truth, why);
   }
   return out;
 }

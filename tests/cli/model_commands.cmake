@@ -22,6 +22,19 @@ hbos_model_command_test(fit_pyod 0 "pyod model of 39 rows x 30 features"
                         ${_exe} fit --mode pyod ${_data}/wbc39_f8.npy -o ${_work}/pyod.hbos)
 hbos_model_command_test(one_shot_pyod 0 "" ${_exe} ${_data}/wbc39.csv --mode pyod -q
                         -o ${_work}/one_shot_pyod.csv)
+# The one-shot form reads .npy too: C order, Fortran order and float32, each against its CSV.
+foreach(input wbc39.csv wbc39_f8.npy wbc39_fortran_f8.npy wbc39_f4.npy wbc39_f4_as_f8.csv)
+  hbos_model_command_test(one_shot_default_${input} 0 "" ${_exe} ${_data}/${input} -q
+                          --contributions -o ${_work}/one_shot_default_${input}.csv)
+  set_tests_properties(cli:model:one_shot_default_${input} PROPERTIES FIXTURES_SETUP scores)
+endforeach()
+hbos_model_command_test(one_shot_pyod_npy 0 "" ${_exe} ${_data}/wbc39_fortran_f8.npy --mode pyod
+                        -q -o ${_work}/one_shot_pyod_npy.csv)
+hbos_model_command_test(one_shot_npy_summary 0 "wbc39_f8.npy: 39 rows x 30 features \\(.npy array\\)"
+                        ${_exe} ${_data}/wbc39_f8.npy -o ${_work}/one_shot_summary.csv)
+hbos_model_command_test(one_shot_npy_rows 0 "\n  row [0-9]+ +score [0-9]"
+                        ${_exe} ${_data}/wbc39_f8.npy -o ${_work}/one_shot_rows.csv)
+set_tests_properties(cli:model:one_shot_pyod_npy PROPERTIES FIXTURES_SETUP scores)
 set_tests_properties(cli:model:fit_default PROPERTIES FIXTURES_SETUP model_default)
 set_tests_properties(cli:model:fit_pyod cli:model:one_shot_pyod PROPERTIES FIXTURES_SETUP model_pyod)
 
@@ -51,7 +64,11 @@ set(_same
     "default_wbc39_f4.npy.csv default_wbc39_f4_as_f8.csv.csv"
     "pyod_wbc39.csv.csv pyod_wbc39_fortran_f8.npy.csv"
     "pyod_wbc39_f4.npy.csv pyod_wbc39_f4_as_f8.csv.csv"
-    "one_shot_pyod.csv pyod_wbc39.csv.csv")
+    "one_shot_pyod.csv pyod_wbc39.csv.csv"
+    "one_shot_pyod.csv one_shot_pyod_npy.csv"
+    "one_shot_default_wbc39.csv.csv one_shot_default_wbc39_f8.npy.csv"
+    "one_shot_default_wbc39.csv.csv one_shot_default_wbc39_fortran_f8.npy.csv"
+    "one_shot_default_wbc39_f4.npy.csv one_shot_default_wbc39_f4_as_f8.csv.csv")
 set(_i 0)
 foreach(pair IN LISTS _same)
   separate_arguments(files UNIX_COMMAND "${pair}")
@@ -68,6 +85,18 @@ hbos_model_command_test(truncated_npy 2 "truncated.npy: truncated .npy header"
                         ${_exe} score ${_work}/default.hbos ${_data}/truncated.npy)
 hbos_model_command_test(int_npy 2 "int64.npy: dtype '<i8' is not supported"
                         ${_exe} fit ${_data}/int64.npy -o ${_work}/never.hbos)
+# A CSV-only option with a .npy file is refused, not dropped: the data would not be what was asked.
+hbos_model_command_test(npy_label_column 2 "wbc39_f8.npy: --label-column last is for CSV input"
+                        ${_exe} fit ${_data}/wbc39_f8.npy --label-column last -o ${_work}/never.hbos)
+hbos_model_command_test(npy_no_header 2 "wbc39_f8.npy: --no-header is for CSV input"
+                        ${_exe} score ${_work}/default.hbos ${_data}/wbc39_f8.npy --no-header)
+hbos_model_command_test(npy_one_shot_delimiter 2 "wbc39_f4.npy: --delimiter is for CSV input"
+                        ${_exe} ${_data}/wbc39_f4.npy --delimiter tab -q)
+hbos_model_command_test(npy_one_shot_ignore 2 "wbc39_fortran_f8.npy: --ignore-columns is for CSV input"
+                        ${_exe} ${_data}/wbc39_fortran_f8.npy --ignore-columns 0 -q)
+hbos_model_command_test(npy_one_shot_truncated 2 "truncated.npy: truncated .npy header"
+                        ${_exe} ${_data}/truncated.npy -q)
+set_tests_properties(cli:model:npy_no_header PROPERTIES FIXTURES_REQUIRED model_default)
 hbos_model_command_test(damaged_model 2 "damaged.hbos', line 25 \\(hist.lo\\): '1.5x' is not a number"
                         ${_exe} score ${_data}/damaged.hbos ${_data}/wbc39.csv)
 hbos_model_command_test(damaged_model_v2 2
