@@ -344,7 +344,6 @@ void fit_and_score_columns(std::vector<Histogram<Scalar>>& histograms,
     for (std::size_t a = 0; a < k0; ++a)
       for (std::size_t b = 0; b < k1; ++b) buffers.pair_table[a * k1 + b] = t0[a] + t1[b];
   }
-  std::array<std::uint8_t, 2048> pair{};
   // Scores of the first two features are final when there are no others: for a large output
   // they are written past the caches (detail/byte_bins.hpp), saving the read of each line.
   const bool stream_scores = paired && d == 2 && n >= (std::size_t{1} << 20);
@@ -358,14 +357,20 @@ void fit_and_score_columns(std::vector<Histogram<Scalar>>& histograms,
       Scalar* out = scores + start;
       if (k0 * k1 <= 256) {
         // The pair's index fits a byte: computed for the block in a loop the compiler
-        // vectorises, so the table loads are all that is left per value.
-        const auto k1_byte = static_cast<std::uint8_t>(k1);
-        for (std::size_t s = 0; s < m; s += pair.size()) {
-          const std::size_t ms = std::min(pair.size(), m - s);
-          for (std::size_t i = 0; i < ms; ++i)
-            pair[i] = static_cast<std::uint8_t>(static_cast<std::uint8_t>(b0[s + i] * k1_byte) +
-                                                b1[s + i]);
-          detail::lookup_byte_indices(table, pair.data(), ms, out + s, stream_scores);
+        // vectorises (or, for one-byte bins with AVX2, in registers), so the table loads are
+        // all that is left per value.
+        if constexpr (std::is_same_v<BinIndex, std::uint8_t>) {
+          detail::lookup_byte_pairs(table, b0, b1, k1, m, out, stream_scores);
+        } else {
+          std::array<std::uint8_t, 2048> pair{};
+          const auto k1_byte = static_cast<std::uint8_t>(k1);
+          for (std::size_t s = 0; s < m; s += pair.size()) {
+            const std::size_t ms = std::min(pair.size(), m - s);
+            for (std::size_t i = 0; i < ms; ++i)
+              pair[i] = static_cast<std::uint8_t>(static_cast<std::uint8_t>(b0[s + i] * k1_byte) +
+                                                  b1[s + i]);
+            detail::lookup_byte_indices(table, pair.data(), ms, out + s, stream_scores);
+          }
         }
       } else {
         for (std::size_t i = 0; i < m; ++i)

@@ -1,7 +1,8 @@
 // The run-time instruction-set dispatch (hbos/detail/isa.hpp): every kernel with an AVX2 body
 // gives the bits of its baseline body, checked kernel by kernel against the plain scalar rules
-// and end to end through the public API with each path forced. On a CPU or build without AVX2
-// both runs take the baseline path (the test says so) and the comparisons hold trivially.
+// and end to end through the public API with each path forced (scores, per-row contributions,
+// and the histograms). On a CPU or build without AVX2 both runs take the baseline path (the
+// test says so) and the comparisons hold trivially.
 
 #include <catch2/catch.hpp>
 
@@ -121,6 +122,48 @@ void check_bin_kernels(std::mt19937_64& rng) {
   }
 }
 
+// The pair-table lookup of two features' one-byte bins: every entry's bits, on each path,
+// streamed or not, into aligned and unaligned outputs, with nothing written past the end.
+template <class Scalar>
+void check_pair_lookup(std::mt19937_64& rng) {
+  const std::array<std::array<std::size_t, 2>, 6> shapes{
+      {{1, 1}, {2, 3}, {10, 10}, {16, 16}, {3, 85}, {128, 2}}};
+  for (const auto& [k0, k1] : shapes) {
+    std::vector<Scalar> table(k0 * k1);
+    std::uniform_real_distribution<double> u(0.0, 30.0);
+    for (Scalar& t : table) t = static_cast<Scalar>(u(rng));
+    for (const std::size_t m : lengths()) {
+      std::vector<std::uint8_t> first(m), second(m);
+      for (std::size_t i = 0; i < m; ++i) {
+        first[i] = static_cast<std::uint8_t>(rng() % k0);
+        second[i] = static_cast<std::uint8_t>(rng() % k1);
+      }
+      std::vector<Scalar> expected(m);
+      for (std::size_t i = 0; i < m; ++i) expected[i] = table[first[i] * k1 + second[i]];
+      for (const bool stream : {false, true}) {
+        for (const std::size_t offset : {std::size_t{0}, std::size_t{1}, std::size_t{2}}) {
+          std::vector<std::vector<Scalar>> out;
+          for (const Isa isa : kIsas) {
+            CAPTURE(k0, k1, m, stream, offset, static_cast<int>(isa));
+            // 32-byte aligned storage, so that the offsets give each alignment of the output.
+            std::vector<Scalar> storage(m + 16, Scalar(-1));
+            const auto skip =
+                (32 - reinterpret_cast<std::uintptr_t>(storage.data()) % 32) % 32 / sizeof(Scalar);
+            Scalar* o = storage.data() + skip + offset;
+            hbos::detail::lookup_byte_pairs(table.data(), first.data(), second.data(), k1, m, o,
+                                            stream, isa);
+            hbos::detail::fence_streaming_stores();
+            CHECK(same_bits(expected.data(), o, m));
+            CHECK(same_bits(o[m], Scalar(-1)));  // nothing written past the end
+            out.emplace_back(o, o + m);
+          }
+          CHECK(same_bits(out[0].data(), out[1].data(), m));
+        }
+      }
+    }
+  }
+}
+
 // What the scans must give: the exact min and max and the finiteness. The bits of a zero
 // extreme (when -0.0 and +0.0 both occur) depend on the order of the scan; that both paths
 // agree on them is checked separately.
@@ -204,7 +247,7 @@ using RowMajor = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic, Eigen::Ro
 // Everything a fit exposes, and the scores, with the kernels on one instruction set.
 template <class Scalar>
 struct Run {
-  std::vector<Scalar> scores, refit_scores, edges, contributions;
+  std::vector<Scalar> scores, refit_scores, edges, contributions, row_contributions;
   std::vector<Eigen::Index> counts;
   std::string error;
 };
@@ -219,6 +262,8 @@ Run<Scalar> run_with(Isa isa, const Matrix& x, const hbos::HbosParams& params) {
     r.scores.assign(s.data(), s.data() + s.size());
     const auto again = hbos::Hbos<Scalar>::fit(x, params).score(x);
     r.refit_scores.assign(again.data(), again.data() + again.size());
+    const auto c = model.contributions(x);
+    r.row_contributions.assign(c.data(), c.data() + c.size());
     for (Eigen::Index j = 0; j < model.n_features(); ++j) {
       const auto& h = model.histogram(j);
       r.edges.insert(r.edges.end(), h.edges().begin(), h.edges().end());
@@ -245,6 +290,9 @@ void check_same_run(const Run<Scalar>& a, const Run<Scalar>& b) {
   CHECK(a.counts == b.counts);
   REQUIRE(a.contributions.size() == b.contributions.size());
   CHECK(same_bits(a.contributions.data(), b.contributions.data(), a.contributions.size()));
+  REQUIRE(a.row_contributions.size() == b.row_contributions.size());
+  CHECK(same_bits(a.row_contributions.data(), b.row_contributions.data(),
+                  a.row_contributions.size()));
 }
 
 std::vector<hbos::HbosParams> specs() {
@@ -335,6 +383,24 @@ void check_models(std::mt19937_64& rng) {
   }
 }
 
+// Two features over 2^20 rows with 10 bins: the fit and score stream the scores past the
+// caches, which the AVX2 pair lookup leaves to the baseline's stores.
+template <class Scalar>
+void check_streamed_scores(std::mt19937_64& rng) {
+  const Eigen::Index n = (Eigen::Index{1} << 20) + 7;
+  Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic> x(n, 2);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    x(i, 0) = test_value<Scalar>(0, rng);
+    x(i, 1) = test_value<Scalar>(1, rng);
+  }
+  const RowMajor<Scalar> rows = x;
+  hbos::HbosParams p;
+  p.feature.binning.bins = 10;
+  p.feature.binning.shifts = 1;
+  check_same_run(run_with<Scalar>(Isa::Baseline, x, p), run_with<Scalar>(Isa::Avx2, x, p));
+  check_same_run(run_with<Scalar>(Isa::Baseline, rows, p), run_with<Scalar>(Isa::Avx2, rows, p));
+}
+
 }  // namespace
 
 TEST_CASE("the instruction set in use can be forced per thread", "[isa]") {
@@ -369,4 +435,16 @@ TEST_CASE("fits and scores are bitwise the same on every path", "[isa]") {
   std::mt19937_64 rng(11);
   check_models<double>(rng);
   check_models<float>(rng);
+}
+
+TEST_CASE("the pair lookup gives the table's entries, bit for bit, on every path", "[isa]") {
+  std::mt19937_64 rng(13);
+  check_pair_lookup<double>(rng);
+  check_pair_lookup<float>(rng);
+}
+
+TEST_CASE("streamed training scores are bitwise the same on every path", "[isa]") {
+  std::mt19937_64 rng(17);
+  check_streamed_scores<double>(rng);
+  check_streamed_scores<float>(rng);
 }
