@@ -168,6 +168,7 @@ template <class Scalar>
 /// One pass over `x` (at least one value): its min, its max and whether all values are finite.
 template <class Scalar>
 MinMax<Scalar> scan_min_max(const ColumnView<Scalar>& x, Isa isa = active_isa()) {
+  (void)isa;  // unused without HBOS_DETAIL_ISA_DISPATCH
   // v * 0 is 0 for finite v and NaN otherwise, so one accumulated sum checks finiteness in the
   // same pass. GCC does not vectorise min/max reductions on its own; on contiguous data Eigen's
   // packet primitives do it explicitly (SSE2 and up). Four packets per step, each with its own
@@ -267,6 +268,7 @@ MinMax<Scalar> scan_min_max(const ColumnView<Scalar>& x, Isa isa = active_isa())
 template <class Scalar>
 bool scan_rows_min_max(const Scalar* data, Eigen::Index n, Eigen::Index d, Eigen::Index row_stride,
                        Scalar* lo, Scalar* hi, Isa isa = active_isa()) {
+  (void)isa;  // unused without HBOS_DETAIL_ISA_DISPATCH
   for (Eigen::Index j = 0; j < d; ++j) lo[j] = hi[j] = data[j];
   Scalar check = 0;
   Eigen::Index i = 0;
