@@ -359,19 +359,7 @@ void fit_and_score_columns(std::vector<Histogram<Scalar>>& histograms,
         // The pair's index fits a byte: computed for the block in a loop the compiler
         // vectorises (or, for one-byte bins with AVX2, in registers), so the table loads are
         // all that is left per value.
-        if constexpr (std::is_same_v<BinIndex, std::uint8_t>) {
-          detail::lookup_byte_pairs(table, b0, b1, k1, m, out, stream_scores);
-        } else {
-          std::array<std::uint8_t, 2048> pair{};
-          const auto k1_byte = static_cast<std::uint8_t>(k1);
-          for (std::size_t s = 0; s < m; s += pair.size()) {
-            const std::size_t ms = std::min(pair.size(), m - s);
-            for (std::size_t i = 0; i < ms; ++i)
-              pair[i] = static_cast<std::uint8_t>(static_cast<std::uint8_t>(b0[s + i] * k1_byte) +
-                                                  b1[s + i]);
-            detail::lookup_byte_indices(table, pair.data(), ms, out + s, stream_scores);
-          }
-        }
+        detail::lookup_byte_pairs(table, b0, b1, k1, m, out, stream_scores);
       } else {
         for (std::size_t i = 0; i < m; ++i)
           out[i] = table[static_cast<std::size_t>(b0[i]) * k1 + b1[i]];

@@ -222,39 +222,41 @@ void interleaved_byte_bins_2(const Scalar* x, std::size_t m, const ByteBinConsta
 #endif
   (void)isa;
 #ifdef HBOS_DETAIL_BYTE_BINS_SSE2
-  if (r != 0) {
-    // the AVX2 body did every whole group of 16 rows
-  } else if constexpr (std::is_same_v<Scalar, double>) {
-    // One row per vector: lane 0 is feature 0, lane 1 feature 1.
-    const __m128d vlo = _mm_set_pd(c1.lo, c0.lo), vinv = _mm_set_pd(c1.inv, c0.inv),
-                  vlast = _mm_set_pd(c1.last, c0.last);
-    auto row = [&](const double* p) {  // {bin 0, bin 1, 0, 0} as int32
-      return _mm_cvttpd_epi32(
-          _mm_min_pd(_mm_mul_pd(_mm_sub_pd(_mm_loadu_pd(p), vlo), vinv), vlast));
-    };
-    // Four rows from p: feature 0's four bins in `first`, feature 1's in `second`.
-    auto four = [&](const double* p, __m128i& first, __m128i& second) {
-      const __m128i r01 = _mm_unpacklo_epi32(row(p), row(p + 2));      // a0 a1 b0 b1
-      const __m128i r23 = _mm_unpacklo_epi32(row(p + 4), row(p + 6));  // a2 a3 b2 b3
-      first = _mm_unpacklo_epi64(r01, r23);
-      second = _mm_unpackhi_epi64(r01, r23);
-    };
-    r = interleaved_sixteens(x, m, four, b0, b1);
-  } else if constexpr (std::is_same_v<Scalar, float>) {
-    // Two rows per vector: lanes 0 and 2 are feature 0, lanes 1 and 3 feature 1.
-    const __m128 vlo = _mm_set_ps(c1.lo, c0.lo, c1.lo, c0.lo),
-                 vinv = _mm_set_ps(c1.inv, c0.inv, c1.inv, c0.inv),
-                 vlast = _mm_set_ps(c1.last, c0.last, c1.last, c0.last);
-    auto rows = [&](const float* p) {  // {a, b, a', b'} bins as int32, viewed as floats to shuffle
-      return _mm_castsi128_ps(
-          _mm_cvttps_epi32(_mm_min_ps(_mm_mul_ps(_mm_sub_ps(_mm_loadu_ps(p), vlo), vinv), vlast)));
-    };
-    auto four = [&](const float* p, __m128i& first, __m128i& second) {
-      const __m128 r01 = rows(p), r23 = rows(p + 4);
-      first = _mm_castps_si128(_mm_shuffle_ps(r01, r23, _MM_SHUFFLE(2, 0, 2, 0)));
-      second = _mm_castps_si128(_mm_shuffle_ps(r01, r23, _MM_SHUFFLE(3, 1, 3, 1)));
-    };
-    r = interleaved_sixteens(x, m, four, b0, b1);
+  // r > 0: the AVX2 body did every whole group of 16 rows already.
+  if (r == 0) {
+    if constexpr (std::is_same_v<Scalar, double>) {
+      // One row per vector: lane 0 is feature 0, lane 1 feature 1.
+      const __m128d vlo = _mm_set_pd(c1.lo, c0.lo), vinv = _mm_set_pd(c1.inv, c0.inv),
+                    vlast = _mm_set_pd(c1.last, c0.last);
+      auto row = [&](const double* p) {  // {bin 0, bin 1, 0, 0} as int32
+        return _mm_cvttpd_epi32(
+            _mm_min_pd(_mm_mul_pd(_mm_sub_pd(_mm_loadu_pd(p), vlo), vinv), vlast));
+      };
+      // Four rows from p: feature 0's four bins in `first`, feature 1's in `second`.
+      auto four = [&](const double* p, __m128i& first, __m128i& second) {
+        const __m128i r01 = _mm_unpacklo_epi32(row(p), row(p + 2));      // a0 a1 b0 b1
+        const __m128i r23 = _mm_unpacklo_epi32(row(p + 4), row(p + 6));  // a2 a3 b2 b3
+        first = _mm_unpacklo_epi64(r01, r23);
+        second = _mm_unpackhi_epi64(r01, r23);
+      };
+      r = interleaved_sixteens(x, m, four, b0, b1);
+    } else if constexpr (std::is_same_v<Scalar, float>) {
+      // Two rows per vector: lanes 0 and 2 are feature 0, lanes 1 and 3 feature 1.
+      const __m128 vlo = _mm_set_ps(c1.lo, c0.lo, c1.lo, c0.lo),
+                   vinv = _mm_set_ps(c1.inv, c0.inv, c1.inv, c0.inv),
+                   vlast = _mm_set_ps(c1.last, c0.last, c1.last, c0.last);
+      auto rows =
+          [&](const float* p) {  // {a, b, a', b'} bins as int32, viewed as floats to shuffle
+            return _mm_castsi128_ps(_mm_cvttps_epi32(
+                _mm_min_ps(_mm_mul_ps(_mm_sub_ps(_mm_loadu_ps(p), vlo), vinv), vlast)));
+          };
+      auto four = [&](const float* p, __m128i& first, __m128i& second) {
+        const __m128 r01 = rows(p), r23 = rows(p + 4);
+        first = _mm_castps_si128(_mm_shuffle_ps(r01, r23, _MM_SHUFFLE(2, 0, 2, 0)));
+        second = _mm_castps_si128(_mm_shuffle_ps(r01, r23, _MM_SHUFFLE(3, 1, 3, 1)));
+      };
+      r = interleaved_sixteens(x, m, four, b0, b1);
+    }
   }
 #endif
   for (; r < m; ++r) {
@@ -432,19 +434,22 @@ void lookup_byte_indices(const Scalar* table, const std::uint8_t* index, std::si
 }
 
 /// out[r] = table[first[r] * k1 + second[r]] for r < m, where every pair index is below 256:
-/// the pair-table scoring of two features' one-byte bins. The pair indices are computed a block
-/// at a time in a loop the compiler vectorises, then looked up (lookup_byte_indices, streamed
-/// with `stream_out`). The AVX2 body, taken when nothing is to be streamed (its gathers were
-/// slower than the baseline's streaming stores there), computes and gathers eight at a time.
-template <class Scalar>
-void lookup_byte_pairs(const Scalar* table, const std::uint8_t* first, const std::uint8_t* second,
+/// the pair-table scoring of two features' bins (one byte each, or the 16-bit indices of a
+/// Workspace). The pair indices are computed a block at a time in a loop the compiler
+/// vectorises, then looked up (lookup_byte_indices, streamed with `stream_out`). For one-byte
+/// bins the AVX2 body, taken when nothing is to be streamed (its gathers were slower than the
+/// baseline's streaming stores there), computes and gathers eight at a time.
+template <class Scalar, class BinIndex>
+void lookup_byte_pairs(const Scalar* table, const BinIndex* first, const BinIndex* second,
                        std::size_t k1, std::size_t m, Scalar* out, bool stream_out,
                        Isa isa = active_isa()) {
   std::size_t i = 0;
 #if defined(HBOS_DETAIL_ISA_DISPATCH) && defined(HBOS_DETAIL_BYTE_BINS_SSE2)
   // Floats are never streamed (lookup_byte_indices).
-  if (isa == Isa::Avx2 && (!stream_out || !std::is_same_v<Scalar, double>))
-    i = lookup_byte_pairs_avx2(table, first, second, k1, m, out);
+  if constexpr (std::is_same_v<BinIndex, std::uint8_t>) {
+    if (isa == Isa::Avx2 && (!stream_out || !std::is_same_v<Scalar, double>))
+      i = lookup_byte_pairs_avx2(table, first, second, k1, m, out);
+  }
 #endif
   (void)isa;
   std::array<std::uint8_t, 2048> pair;
