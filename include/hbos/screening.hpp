@@ -3,8 +3,9 @@
 /// Reprojection-residual screening in one include: a frame's matches (screening/matches.hpp),
 /// the dominant residual field (screening/residual_field.hpp), the strategies
 /// (screening/strategies.hpp), the screen (screening/screen.hpp), the pinhole model and the
-/// Gauss-Newton pose refit (screening/pinhole.hpp, screening/pose_refinement.hpp), and the
-/// conveniences for callers that hold 3-D map points and a pose (screening/projection.hpp).
+/// Gauss-Newton pose refit (screening/pinhole.hpp, screening/pose_refinement.hpp), the leverage of
+/// a group of matches on the pose (screening/pose_leverage.hpp), and the conveniences for callers
+/// that hold 3-D map points and a pose (screening/projection.hpp).
 /// Eigen only. The OpenCV adapter (hbos/screening/opencv.hpp) is deliberately not included:
 /// include it yourself where OpenCV is available.
 ///
@@ -13,6 +14,7 @@
 
 #include "hbos/screening/matches.hpp"
 #include "hbos/screening/pinhole.hpp"
+#include "hbos/screening/pose_leverage.hpp"
 #include "hbos/screening/pose_refinement.hpp"
 #include "hbos/screening/projection.hpp"
 #include "hbos/screening/residual_field.hpp"

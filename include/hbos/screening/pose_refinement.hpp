@@ -61,6 +61,25 @@ Eigen::Matrix<Scalar, 3, 3> so3_exp(const Eigen::Matrix<Scalar, 3, 1>& omega) {
   return Eigen::AngleAxis<Scalar>(angle, omega / angle).toRotationMatrix();
 }
 
+/// Jacobian of the pixel pi(p) w.r.t. the left perturbation delta = (omega, tau) of the pose that
+/// produced p = T X (T <- exp(delta) * T), not whitened: the pinhole's
+/// [[fx/z, 0, -fx x/z^2], [0, fy/z, -fy y/z^2]] times [-[p]x, I]. `inv_z` is 1 / p.z(), which
+/// the caller has already computed for the projection itself. Shared by refine_pose and
+/// group_leverage (pose_leverage.hpp), so both see the same information.
+template <class Scalar>
+Eigen::Matrix<Scalar, 2, 6> projection_jacobian(const PinholeCamera<Scalar>& camera,
+                                                const Eigen::Matrix<Scalar, 3, 1>& p,
+                                                Scalar inv_z) {
+  Eigen::Matrix<Scalar, 2, 3> J_proj;
+  J_proj << camera.fx * inv_z, 0, -camera.fx * p.x() * inv_z * inv_z, 0, camera.fy * inv_z,
+      -camera.fy * p.y() * inv_z * inv_z;
+  Eigen::Matrix<Scalar, 3, 6> J_pose;
+  J_pose << 0, p.z(), -p.y(), 1, 0, 0,  //
+      -p.z(), 0, p.x(), 0, 1, 0,        //
+      p.y(), -p.x(), 0, 0, 0, 1;
+  return J_proj * J_pose;
+}
+
 inline void validate(const PoseRefinementOptions& o) {
   require(o.max_iterations >= 1, "PoseRefinementOptions max_iterations must be >= 1, got ",
           o.max_iterations);
@@ -120,14 +139,7 @@ PoseRefinementSummary refine_pose(Eigen::Index n, const Point& point, const Obse
       } else {
         cost += chi2;
       }
-      Eigen::Matrix<Scalar, 2, 3> J_proj;
-      J_proj << camera.fx * inv_z, 0, -camera.fx * p.x() * inv_z * inv_z, 0, camera.fy * inv_z,
-          -camera.fy * p.y() * inv_z * inv_z;
-      Eigen::Matrix<Scalar, 3, 6> J_pose;
-      J_pose << 0, p.z(), -p.y(), 1, 0, 0,  //
-          -p.z(), 0, p.x(), 0, 1, 0,        //
-          p.y(), -p.x(), 0, 0, 0, 1;
-      const Eigen::Matrix<Scalar, 2, 6> J = J_proj * J_pose;
+      const Eigen::Matrix<Scalar, 2, 6> J = detail::projection_jacobian(camera, p, inv_z);
       H.noalias() += (w * info) * J.transpose() * J;
       b.noalias() -= (w * info) * J.transpose() * e;
       ++used;
