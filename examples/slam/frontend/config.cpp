@@ -39,6 +39,13 @@ void ScreenStageConfig::select(const std::string& strategy_name) {
   name = strategy_name;
 }
 
+nlohmann::json to_json(const LeverageGuardConfig& guard) {
+  if (!guard.enabled) return false;
+  return {{"radius_px", guard.radius_px},
+          {"max_ratio", guard.max_ratio},
+          {"consistency_z", guard.consistency_z}};
+}
+
 const char* to_string(RoughPoseMethod method) {
   return method == RoughPoseMethod::kRansac ? "ransac" : "constant-velocity";
 }

@@ -7,6 +7,7 @@
 
 #include <Eigen/Core>
 #include <hbos/screening/strategies.hpp>
+#include <nlohmann/json.hpp>
 
 #include <optional>
 #include <string>
@@ -126,6 +127,29 @@ struct ScreenStageConfig {
   void select(const std::string& strategy_name);
 };
 
+/// The mask neighbourhood's leverage guard (frontend/leverage_guard.hpp), run on the screen's
+/// survivors before the final refinement, with any screen. When every static match is far away,
+/// a rotation and a translation move them alike; a few near matches just outside the mask (a
+/// person's rim the segmenter missed) then decide the pose alone. Such matches are dropped when
+/// the other survivors, left to themselves, put them off. Measured in docs/results.md ("The mask
+/// neighbourhood's leverage").
+struct LeverageGuardConfig {
+  bool enabled = true;
+  /// [px] matches within this distance of the frame's dynamic-object mask form the group (the
+  /// default screen's mask-neighbourhood radius)
+  double radius_px = 10.0;
+  /// The group is dropped when, along some direction of the pose, its Gauss-Newton information
+  /// exceeds this multiple of all other survivors' (hbos::group_leverage's ratio). 1: the group
+  /// alone outweighs everything else there.
+  double max_ratio = 1.0;
+  /// ... and only when the group disagrees with the pose the other survivors give alone
+  /// (hbos::group_consistency's shift_chi2 for the group's mean residual, at the noise those
+  /// survivors show, above its quantile at this one-sided normal z): a decisive group that agrees
+  /// with them (static points along the mask's edge) is kept. 3.09: a static group is dropped in
+  /// about 1 of 1000 frames where it is decisive.
+  double consistency_z = 3.09;
+};
+
 /// Gauss-Newton pose refinement on the survivors (hbos/screening/pose_refinement.hpp).
 struct RefinementConfig {
   int max_iterations = 10;     ///< per call (ORB-SLAM2: 10 per round)
@@ -155,6 +179,7 @@ struct Config {
   MatchingConfig matching;
   RoughPoseConfig rough_pose;
   ScreenStageConfig screen;
+  LeverageGuardConfig guard;
   RefinementConfig refinement;
   MapConfig map;  ///< the map tracker's own stages (frontend/map/map_config.hpp)
   OutputConfig output;
@@ -164,6 +189,8 @@ struct Config {
 [[nodiscard]] const char* to_string(MaskSource source);
 /// Inverse of to_string; throws hbos::InvalidArgument naming the value and the choices.
 [[nodiscard]] MaskSource parse_mask_source(const std::string& name);
+/// The guard's settings as one object (run summaries and cache keys), or `false` when off.
+[[nodiscard]] nlohmann::json to_json(const LeverageGuardConfig& guard);
 /// `ransac`, `constant-velocity`.
 [[nodiscard]] const char* to_string(RoughPoseMethod method);
 [[nodiscard]] RoughPoseMethod parse_rough_pose_method(const std::string& name);

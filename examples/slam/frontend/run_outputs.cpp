@@ -36,14 +36,18 @@ const char* scenario_name(const ScenarioConfig& scenario) {
 std::string stats_csv(const std::vector<FrameStats>& stats) {
   std::string csv =
       "frame,stamp,features,matches,person_matches,survivors,person_survivors,static_dropped,"
-      "rough_pose,ransac_inliers,tracked,threshold,screen_us,refine_us,mask_us\n";
+      "rough_pose,ransac_inliers,tracked,threshold,screen_us,refine_us,mask_us,guard_ratio,"
+      "guard_disagreement,guard_dropped\n";
   for (const FrameStats& s : stats) {
     csv += fmt::format(
-        "{},{:.6f},{},{},{},{},{},{},{},{},{},{},{:.1f},{:.1f},{:.1f}\n", s.index, s.stamp,
+        "{},{:.6f},{},{},{},{},{},{},{},{},{},{},{:.1f},{:.1f},{:.1f},{},{},{}\n", s.index, s.stamp,
         s.features, s.matches, s.person_matches, s.survivors, s.person_survivors, s.static_dropped,
         s.rough_from_ransac ? "ransac" : "constant-velocity", s.ransac_inliers, s.tracked ? 1 : 0,
         std::isfinite(s.threshold) ? fmt::format("{:.6g}", s.threshold) : "", s.screen_us,
-        s.refine_us, s.mask_us);
+        s.refine_us, s.mask_us,
+        std::isfinite(s.guard_ratio) ? fmt::format("{:.4g}", s.guard_ratio) : "",
+        std::isfinite(s.guard_disagreement) ? fmt::format("{:.4g}", s.guard_disagreement) : "",
+        s.guard_dropped);
   }
   return csv;
 }
@@ -62,6 +66,7 @@ nlohmann::json summary_json(const RunResult& run, const Config& config,
                    {"screen_rounds", config.screen.rounds},
                    {"screen_mask_evidence", config.screen.mask_evidence},
                    {"screen_track_history", config.screen.track_history},
+                   {"leverage_guard", to_json(config.guard)},
                    {"history_forgetting", config.map.history.forgetting},
                    {"rough_pose", to_string(config.rough_pose.method)},
                    {"ransac_threshold_px", config.rough_pose.ransac_threshold_px},
@@ -70,6 +75,8 @@ nlohmann::json summary_json(const RunResult& run, const Config& config,
                    {"person_speed_px_per_frame", config.scenario.speed_px_per_frame}};
   j["frames"] = t.frames;
   j["frames_tracked"] = t.frames_tracked;
+  j["frames_guarded"] = t.frames_guarded;
+  j["guard_dropped"] = t.guard_dropped;
   j["frames_rough_pose_ransac"] = t.frames_rough_ransac;
   j["matches"] = t.matches;
   j["person_matches"] = t.person_matches;

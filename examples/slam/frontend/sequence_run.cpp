@@ -37,6 +37,8 @@ RunTotals total_of(const std::vector<FrameStats>& stats) {
     t.person_survivors += s.person_survivors;
     t.static_matches += s.matches - s.person_matches;
     t.static_dropped += s.static_dropped;
+    t.frames_guarded += s.guard_dropped > 0 ? 1 : 0;
+    t.guard_dropped += s.guard_dropped;
     if (s.matches > 0) {
       ++screened;
       screen_us += s.screen_us;

@@ -31,6 +31,8 @@ struct RunTotals {
   long person_survivors = 0;
   long static_matches = 0;
   long static_dropped = 0;
+  int frames_guarded = 0;  ///< frames where the leverage guard dropped matches
+  long guard_dropped = 0;  ///< matches the leverage guard dropped (static or not)
   /// person_survivors / person_matches; nullopt without person matches.
   std::optional<double> person_survival_share;
   double static_loss_share = 0.0;  ///< static_dropped / static_matches

@@ -105,6 +105,10 @@ void add_options(CLI::App& app, CommandOptions& o) {
                "frame tracker: pass each match chain's forgetting-weighted outlier share to "
                "the screen (the default screen's persistence evidence)")
       ->capture_default_str();
+  app.add_flag("--leverage-guard,!--no-leverage-guard", c.guard.enabled,
+               "drop the survivors near the dynamic-object mask when they alone would decide a "
+               "direction of the pose (the mask neighbourhood's leverage guard; any screen)")
+      ->capture_default_str();
   app.add_option("--history-forgetting", c.map.history.forgetting,
                  "weight of the past per screening in the outlier shares both trackers keep")
       ->capture_default_str()

@@ -6,6 +6,7 @@
 #include <hbos/screening/residual_field.hpp>
 #include <hbos/screening/strategies.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdint>
 #include <string>
@@ -25,11 +26,13 @@ Tracker::Tracker(const Config& config, const CameraModel& camera)
       matcher_(config.matching),
       rough_pose_(config.rough_pose, camera.pinhole()),
       screen_(config.screen),
+      guard_(config.guard),
       refiner_(config.refinement, camera.pinhole()),
       scale_factor_(config.extraction.scale_factor),
       min_matches_(static_cast<int>(config.screen.min_inliers)),
       mask_reach_px_(mask_evidence_reach_px(config)),
       pass_mask_distance_(mask_reach_px_ > 0.0),
+      distance_reach_px_(std::max(mask_reach_px_, guard_.reach_px(config.mask.source))),
       pass_history_(frame_history_wanted(config)),
       forgetting_(config.map.history.forgetting) {
   if (!(forgetting_ >= 0.0 && forgetting_ <= 1.0))
@@ -61,7 +64,10 @@ TrackResult Tracker::track(const Frame& frame) {
 
   // 3. Each match: the previous keypoint back-projected to 3D, the current keypoint observing it.
   const hbos::PinholeCamerad camera = refiner_.camera();
-  const MaskDistance to_mask(pass_mask_distance_ ? frame.mask : cv::Mat(), mask_reach_px_);
+  // One distance per match serves the screen's evidence and the guard: beyond the evidence's
+  // own radius its value is 0 whatever the distance, so a longer reach changes nothing there.
+  const MaskDistance to_mask(distance_reach_px_ > 0.0 ? frame.mask : cv::Mat(), distance_reach_px_);
+  std::vector<double> mask_distance_px;
   MatchEvidence evidence;
   std::vector<Eigen::Vector3d> points_prev;
   std::vector<Eigen::Vector2d> observed;
@@ -72,8 +78,7 @@ TrackResult Tracker::track(const Frame& frame) {
     observed.push_back(current.undistorted[c]);
     // ORB-SLAM's noise model: a keypoint at octave o is 1.2^o times less precise.
     sigma.push_back(hbos::sigma_from_octave(current.keypoints[c].octave, scale_factor_));
-    if (pass_mask_distance_)
-      evidence.mask_distance_px.push_back(to_mask.at(current.keypoints[c].pt));
+    if (distance_reach_px_ > 0.0) mask_distance_px.push_back(to_mask.at(current.keypoints[c].pt));
     if (pass_history_) evidence.outlier_history.push_back(previous_history_[p].share());
     out.matches.push_back({{current.keypoints[c].pt.x, current.keypoints[c].pt.y},
                            {previous.keypoints[p].pt.x, previous.keypoints[p].pt.y},
@@ -81,6 +86,7 @@ TrackResult Tracker::track(const Frame& frame) {
                            false});
   }
   stats.matches = static_cast<int>(pairs.size());
+  if (pass_mask_distance_) evidence.mask_distance_px = mask_distance_px;
 
   // "Tracked" is decided on the final pose, after RANSAC, the screen and the refinement: a
   // frame is tracked when at least min_matches_ screened matches reproject within ORB-SLAM2's
@@ -99,8 +105,14 @@ TrackResult Tracker::track(const Frame& frame) {
     // 5. Screen the reprojection residuals under the rough pose; between rounds the pose is
     //    refined on the survivors and the residuals measured again.
     out.screen = screen_.screen(points_prev, observed, sigma, T_candidate, refiner_, evidence);
+    const GuardOutcome guard = guard_.apply(points_prev, observed, sigma, mask_distance_px,
+                                            T_candidate, refiner_, out.screen.inlier);
+    stats.guard_ratio = guard.ratio;
+    stats.guard_disagreement = guard.disagreement;
+    stats.guard_dropped = guard.dropped;
 
-    // 6. Refine the pose on the final survivors.
+    // 6. Refine the pose on the final survivors, less those near the mask when they alone would
+    //    decide a direction of the pose (frontend/leverage_guard.hpp).
     Eigen::Index survivors = 0;
     for (const std::uint8_t k : out.screen.inlier) survivors += k;
     if (survivors >= min_matches_) {

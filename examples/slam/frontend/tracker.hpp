@@ -7,6 +7,7 @@
 #include "frontend/config.hpp"
 #include "frontend/frame.hpp"
 #include "frontend/frame_matching.hpp"
+#include "frontend/leverage_guard.hpp"
 #include "frontend/orb_extraction.hpp"
 #include "frontend/outlier_share.hpp"
 #include "frontend/pose_refiner.hpp"
@@ -44,6 +45,11 @@ struct FrameStats {
   double screen_us = 0.0;  ///< [us] screening time, refinement excluded
   double refine_us = 0.0;  ///< [us] pose refinement time (between rounds and final)
   double mask_us = 0.0;    ///< [us] time to compute the frame's dynamic-object mask
+  /// The leverage guard's ratio (frontend/leverage_guard.hpp); NaN: the guard did not run
+  double guard_ratio = std::numeric_limits<double>::quiet_NaN();
+  /// its disagreement (> 1: dropped); NaN: not measured (the ratio did not exceed its limit)
+  double guard_disagreement = std::numeric_limits<double>::quiet_NaN();
+  int guard_dropped = 0;  ///< survivors near the mask the guard dropped
 };
 
 /// One screened match, for figures.
@@ -91,12 +97,14 @@ class Tracker {
   FrameMatcher matcher_;
   RoughPoseEstimator rough_pose_;
   ResidualScreen screen_;
+  LeverageGuard guard_;
   PoseRefiner refiner_;
   float scale_factor_;
   int min_matches_;
-  double mask_reach_px_;     ///< [px] how far from the mask the screen's evidence reaches
-  bool pass_mask_distance_;  ///< the screen sees each match's distance to the frame's mask
-  bool pass_history_;        ///< the screen sees each match's chain's outlier share
+  double mask_reach_px_;      ///< [px] how far from the mask the screen's evidence reaches
+  bool pass_mask_distance_;   ///< the screen sees each match's distance to the frame's mask
+  double distance_reach_px_;  ///< [px] mask distances measured this far (screen and guard)
+  bool pass_history_;         ///< the screen sees each match's chain's outlier share
   double forgetting_;
 
   std::optional<Features> previous_;

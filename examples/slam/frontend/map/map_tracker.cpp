@@ -88,6 +88,7 @@ struct MapTracker::Matched {
   std::vector<Eigen::Vector2d> observed;
   std::vector<double> sigma;
   MatchEvidence evidence;
+  std::vector<double> mask_distance_px;  ///< for the leverage guard; empty: not measured
 };
 
 MapTracker::MapTracker(const Config& config, const CameraModel& camera)
@@ -95,6 +96,7 @@ MapTracker::MapTracker(const Config& config, const CameraModel& camera)
       extractor_(config.extraction, camera),
       rough_pose_(map_rough_pose(config), camera.pinhole()),
       screen_(config.screen),
+      guard_(config.guard),
       refiner_(config.refinement, camera.pinhole()),
       matcher_(config.map.projection, camera.pinhole(), config.extraction.scale_factor,
                config.extraction.levels),
@@ -142,7 +144,13 @@ TrackResult MapTracker::track(const Frame& frame) {
   const Matched m = gather(frame, current, point_of, out);
   out.screen =
       screen_.screen(m.points_world, m.observed, m.sigma, T_camera_world, refiner_, m.evidence);
-  // 7. Optimise the pose on the survivors (Huber).
+  // 7. Optimise the pose on the survivors (Huber), less those near the mask when they alone
+  //    would decide a direction of the pose (frontend/leverage_guard.hpp).
+  const GuardOutcome guard = guard_.apply(m.points_world, m.observed, m.sigma, m.mask_distance_px,
+                                          T_camera_world, refiner_, out.screen.inlier);
+  out.stats.guard_ratio = guard.ratio;
+  out.stats.guard_disagreement = guard.disagreement;
+  out.stats.guard_dropped = guard.dropped;
   refine_on_survivors(m, out.screen, T_camera_world);
   report_.screen_us = out.screen.screen_us;
   report_.refine_us = out.screen.refine_us;
@@ -270,7 +278,10 @@ void MapTracker::match_local_map(const Frame& frame, const Features& current,
 MapTracker::Matched MapTracker::gather(const Frame& frame, const Features& current,
                                        const std::vector<int>& point_of, TrackResult& out) const {
   Matched m;
-  const double reach_px = mask_evidence_reach_px(config_);
+  // One distance per match serves the screen's evidence and the guard: beyond the evidence's
+  // own radius its value is 0 whatever the distance, so a longer reach changes nothing there.
+  const double evidence_reach_px = mask_evidence_reach_px(config_);
+  const double reach_px = std::max(evidence_reach_px, guard_.reach_px(config_.mask.source));
   const bool mask_distances = reach_px > 0.0;
   const MaskDistance to_mask(mask_distances ? frame.mask : cv::Mat(), reach_px);
   for (std::size_t k = 0; k < point_of.size(); ++k) {
@@ -284,7 +295,7 @@ MapTracker::Matched MapTracker::gather(const Frame& frame, const Features& curre
     // ORB-SLAM's noise model: a keypoint at octave o is 1.2^o times less precise.
     m.sigma.push_back(
         hbos::sigma_from_octave(current.keypoints[k].octave, config_.extraction.scale_factor));
-    if (mask_distances) m.evidence.mask_distance_px.push_back(to_mask.at(current.keypoints[k].pt));
+    if (mask_distances) m.mask_distance_px.push_back(to_mask.at(current.keypoints[k].pt));
     m.evidence.outlier_history.push_back(p.history.outlier_share());
     const cv::Point2f& now = current.keypoints[k].pt;
     const auto before = last_pixel_of_point_.find(id);
@@ -293,6 +304,7 @@ MapTracker::Matched MapTracker::gather(const Frame& frame, const Features& curre
         {{now.x, now.y}, {then.x, then.y}, current.on_person[k] != 0 || p.on_person, false});
   }
   out.stats.matches = static_cast<int>(m.point.size());
+  if (evidence_reach_px > 0.0) m.evidence.mask_distance_px = m.mask_distance_px;
   return m;
 }
 

@@ -11,6 +11,7 @@
 #include "frontend/camera.hpp"
 #include "frontend/config.hpp"
 #include "frontend/frame.hpp"
+#include "frontend/leverage_guard.hpp"
 #include "frontend/map/keyframe_policy.hpp"
 #include "frontend/map/map.hpp"
 #include "frontend/map/projection_matcher.hpp"
@@ -97,6 +98,7 @@ class MapTracker {
   OrbExtractor extractor_;
   RoughPoseEstimator rough_pose_;
   ResidualScreen screen_;
+  LeverageGuard guard_;
   PoseRefiner refiner_;
   ProjectionMatcher matcher_;
   Relocaliser relocaliser_;
