@@ -127,7 +127,8 @@ GroupLeverage group_leverage(Eigen::Index n, const Point& point, const Sigma& si
 /// What group_consistency measured.
 struct GroupConsistency {
   /// All of the group's residuals against "static" (below); NaN when it cannot be formed (no
-  /// usable group match, or the information is not positive definite or not finite).
+  /// usable group match, fewer than 3 usable matches outside it, or information that is not
+  /// positive definite or not finite).
   double chi2 = std::numeric_limits<double>::quiet_NaN();
   Eigen::Index dof = 0;  ///< 2 per usable group match: chi2's degrees of freedom if static
   /// The group's mean residual against "static": chi-square with 2 degrees of freedom if
@@ -176,6 +177,7 @@ GroupConsistency group_consistency(Eigen::Index n, const Point& point, const Obs
   Eigen::Matrix<double, 2, 6> J_sum = Eigen::Matrix<double, 2, 6>::Zero();
   Eigen::Vector2d r_sum = Eigen::Vector2d::Zero();
   double r2 = 0.0;
+  Eigen::Index n_rest = 0;
   for (Eigen::Index i = 0; i < n; ++i) {
     if (!use(i)) continue;
     const Vec3 p = T_rest * Vec3(point(i));
@@ -189,6 +191,7 @@ GroupConsistency group_consistency(Eigen::Index n, const Point& point, const Obs
         detail::projection_jacobian(camera, p, inv_z).template cast<double>() / s;
     if (!in_group(i)) {
       H_rest.noalias() += J.transpose() * J;
+      ++n_rest;
       continue;
     }
     const Eigen::Matrix<Scalar, 2, 1> uv(camera.fx * p.x() * inv_z + camera.cx,
@@ -202,8 +205,10 @@ GroupConsistency group_consistency(Eigen::Index n, const Point& point, const Obs
     r_sum += r;
     result.dof += 2;
   }
-  if (result.dof == 0 || !H_rest.allFinite() || !H_group.allFinite() || !g.allFinite() ||
-      !std::isfinite(r2))
+  // Fewer than 3 rest matches cannot fix a pose (as in group_leverage, the count decides: a
+  // singular H_rest can pass the factorisation by rounding).
+  if (result.dof == 0 || n_rest < 3 || !H_rest.allFinite() || !H_group.allFinite() ||
+      !g.allFinite() || !std::isfinite(r2))
     return result;
   const double s2 = noise_scale * noise_scale;
   const Eigen::LLT<Mat6d> all(H_rest + H_group);
