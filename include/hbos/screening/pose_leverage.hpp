@@ -216,7 +216,7 @@ GroupConsistency group_consistency(Eigen::Index n, const Point& point, const Obs
   if (all.info() != Eigen::Success || rest.info() != Eigen::Success) return result;
   // The subtracted part is at most r2 in exact arithmetic; rounding must not make chi2 < 0.
   result.chi2 = std::max(0.0, r2 - g.dot(all.solve(g))) / s2;
-  const double k = static_cast<double>(result.dof / 2);
+  const double k = static_cast<double>(result.dof) / 2.0;  // dof is even: exact
   const Eigen::Vector2d mean_r = r_sum / k;
   const Eigen::Matrix<double, 2, 6> mean_J = J_sum / k;
   const Eigen::Matrix2d C =
