@@ -2,21 +2,15 @@
 
 #include <fmt/format.h>
 #include <hbos/error.hpp>
+#include <hbos/screening/noise_scale.hpp>
 #include <hbos/screening/pose_leverage.hpp>
 
-#include <algorithm>
 #include <cmath>
 #include <cstddef>
 
 namespace hbos::slam {
 
 namespace {
-
-double median(std::vector<double>& values) {
-  const auto mid = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
-  std::nth_element(values.begin(), mid, values.end());
-  return *mid;
-}
 
 /// The chi-square quantile with 2 degrees of freedom at the one-sided normal quantile z: the
 /// tail probability p = erfc(z / sqrt 2) / 2, and -2 ln p (exact for 2 degrees of freedom).
@@ -77,8 +71,8 @@ GuardOutcome LeverageGuard::apply(const std::vector<Eigen::Vector3d>& points,
   Eigen::Isometry3d T_rest = T_cur_prev;
   refiner.refine(points, observed, sigma, rest, T_rest);
   // The noise the others show, in sigma units: the Rayleigh scale of their whitened residuals
-  // (median / sqrt(2 ln 2)), so a frame noisier than the octave model does not count against
-  // the group.
+  // read at the median (the screen's own estimator, hbos/screening/noise_scale.hpp), so a frame
+  // noisier than the octave model does not count against the group.
   std::vector<double> rest_residual;
   for (std::size_t i = 0; i < n; ++i) {
     if (rest[i] == 0) continue;
@@ -86,7 +80,7 @@ GuardOutcome LeverageGuard::apply(const std::vector<Eigen::Vector3d>& points,
     if (p.z() > 0.0) rest_residual.push_back((camera.project(p) - observed[i]).norm() / sigma[i]);
   }
   if (rest_residual.empty()) return out;
-  const double noise = median(rest_residual) / std::sqrt(2.0 * std::log(2.0));
+  const double noise = hbos::detail::rayleigh_scale(rest_residual, rest_residual.size(), 0.5);
   if (!(noise > 0.0)) return out;
   const hbos::GroupConsistency consistency = hbos::group_consistency(
       static_cast<Eigen::Index>(n), [&](Eigen::Index i) { return points[at(i)]; },
