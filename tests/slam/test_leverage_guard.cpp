@@ -40,10 +40,13 @@ struct Scene {
   int rim = 0;  ///< the last `rim` points are the near group
 };
 
-// 400 static points over the whole image at depths [z_near, z_far], then 20 rim points at 1.5 m
-// in the image's left third, 2-8 px from the mask. Under the identity pose each point is observed
-// where it projects plus noise of sigma 0.5 px (seeded); the rim moves by `rim_shift_px` in u.
-Scene scene(double z_near, double z_far, unsigned seed, double rim_shift_px = 3.0) {
+// `static_count` static points over the whole image at depths [z_near, z_far], then `rim_count` rim
+// points at 1.5 m in the image's left third, 2-8 px from the mask. Under the identity pose each
+// point is observed where it projects plus noise of sigma 0.5 px (seeded); the rim moves by
+// `rim_shift_px` in u. With `static_bias_px`, the statics of each 80 px cell share an offset of
+// that sigma, as neighbours do on real frames.
+Scene scene(double z_near, double z_far, unsigned seed, double rim_shift_px = 3.0,
+            int rim_count = 20, double static_bias_px = 0.0, int static_count = 400) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> u(20.0, 620.0), v(20.0, 460.0), z(z_near, z_far);
   std::uniform_real_distribution<double> rim_u(60.0, 200.0), rim_v(150.0, 400.0), gap(2.0, 8.0);
@@ -57,9 +60,18 @@ Scene scene(double z_near, double z_far, unsigned seed, double rim_shift_px = 3.
     s.mask_distance_px.push_back(distance);
     s.inlier.push_back(1);
   };
-  for (int i = 0; i < 400; ++i) add(u(rng), v(rng), z(rng), kInf, 0.0);
-  for (int i = 0; i < 20; ++i) add(rim_u(rng), rim_v(rng), 1.5, gap(rng), rim_shift_px);
-  s.rim = 20;
+  std::normal_distribution<double> unit(0.0, 1.0);
+  std::vector<Eigen::Vector2d> cell_offset(8 * 6);
+  for (Eigen::Vector2d& o : cell_offset) o = static_bias_px * Eigen::Vector2d(unit(rng), unit(rng));
+  for (int i = 0; i < static_count; ++i) {
+    const double px = u(rng), py = v(rng);
+    const Eigen::Vector2d o = cell_offset[static_cast<std::size_t>(static_cast<int>(py / 80.0) * 8 +
+                                                                   static_cast<int>(px / 80.0))];
+    add(px, py, z(rng), kInf, 0.0);
+    s.observed.back() += o;
+  }
+  for (int i = 0; i < rim_count; ++i) add(rim_u(rng), rim_v(rng), 1.5, gap(rng), rim_shift_px);
+  s.rim = rim_count;
   return s;
 }
 
@@ -92,6 +104,7 @@ TEST_CASE("leverage guard: a moving rim that alone decides the pose is dropped, 
     const GuardOutcome on_wall = apply(guard, far_wall, T);
     CHECK(on_wall.ratio > 2.0);
     CHECK(on_wall.disagreement > 1.5);
+    CHECK(on_wall.shift_scales > 3.0);
     CHECK(on_wall.dropped == 20);
     CHECK(rim_kept(far_wall) == 0);
     // Only the rim: the 400 statics stay.
@@ -113,6 +126,43 @@ TEST_CASE("leverage guard: a moving rim that alone decides the pose is dropped, 
     CHECK(agreeing.disagreement < 0.7);
     CHECK(agreeing.dropped == 0);
     CHECK(rim_kept(still) == 20);
+  }
+}
+
+TEST_CASE(
+    "leverage guard: a large group's small offset counts against what the frame's "
+    "neighbours share",
+    "[frontend][guard]") {
+  // 400 points along the mask next to 1200 statics that span 1-5 m (a detector box gives a real
+  // frame's survivors near its edge in such numbers), all off by 0.3 px: 0.6 noise scales (the
+  // noise is 0.5 px). Their number alone makes that significant. Where the statics of each
+  // neighbourhood share an offset of 0.15 px (0.3 scales, what real frames show), the group's
+  // offset is what static neighbours do here: kept, and with it the near points that decide the
+  // pose. Where the statics are independent, as rendered ones are, the same offset is not:
+  // dropped.
+  LeverageGuardConfig independent_noise;
+  independent_noise.bias_cell_px = 0.0;
+  for (unsigned seed = 1; seed <= 5; ++seed) {
+    CAPTURE(seed);
+    Scene real_like = scene(1.0, 5.0, seed, 0.3, 400, 0.15, 1200);
+    const GuardOutcome kept = apply(LeverageGuard(LeverageGuardConfig{}), real_like);
+    CHECK(kept.ratio > 1.2);
+    CHECK(kept.shared_bias > 0.15);
+    CHECK(kept.disagreement < 0.9);
+    CHECK(kept.dropped == 0);
+    CHECK(rim_kept(real_like) == 400);
+
+    Scene same = scene(1.0, 5.0, seed, 0.3, 400, 0.15, 1200);
+    const GuardOutcome assumed_independent = apply(LeverageGuard(independent_noise), same);
+    CHECK(assumed_independent.shift_scales == kept.shift_scales);
+    CHECK(assumed_independent.disagreement > 1.5);
+    CHECK(assumed_independent.dropped == 400);
+
+    Scene rendered_like = scene(1.0, 5.0, seed, 0.3, 400, 0.0, 1200);
+    const GuardOutcome measured = apply(LeverageGuard(LeverageGuardConfig{}), rendered_like);
+    CHECK(measured.shared_bias < 0.15);
+    CHECK(measured.disagreement > 1.5);
+    CHECK(measured.dropped == 400);
   }
 }
 
@@ -173,6 +223,11 @@ TEST_CASE("leverage guard: bad settings and inputs are refused by name", "[front
     LeverageGuardConfig r;
     r.consistency_z = ratio;
     CHECK_THROWS_WITH(LeverageGuard(r), Catch::Contains("consistency z"));
+  }
+  for (const double shift : {-0.5, kInf, std::nan("")}) {
+    LeverageGuardConfig c;
+    c.bias_cell_px = shift;
+    CHECK_THROWS_WITH(LeverageGuard(c), Catch::Contains("shared-bias cell"));
   }
   const LeverageGuard guard(LeverageGuardConfig{});
   Scene s = scene(4.5, 5.0, 3);

@@ -253,6 +253,8 @@ hbos::GroupConsistency reference_consistency(const Frame& f,
                             (Eigen::Matrix2d::Identity() / static_cast<double>(k) +
                              mean_J * H_rest_inv * mean_J.transpose());
   result.shift_chi2 = mean_r.dot(C.inverse() * mean_r);
+  result.mean_residual = mean_r;
+  result.shift_covariance = C;
   return result;
 }
 
@@ -615,6 +617,11 @@ TEST_CASE("group_consistency agrees with a dense computation on numeric Jacobian
     }
     CHECK(close(G.chi2, R.chi2, 1e-6));
     CHECK(close(G.shift_chi2, R.shift_chi2, 1e-6));
+    CHECK((G.mean_residual - R.mean_residual).norm() <= 1e-9 * (1.0 + R.mean_residual.norm()));
+    CHECK((G.shift_covariance - R.shift_covariance).norm() <= 1e-6 * R.shift_covariance.norm());
+    // The statistic is the mean's Mahalanobis norm under that covariance.
+    CHECK(close(G.shift_chi2, G.mean_residual.dot(G.shift_covariance.inverse() * G.mean_residual),
+                1e-9));
     ++compared;
   }
   CHECK(compared >= 35);  // the group is rarely empty after the unused draws
@@ -688,6 +695,9 @@ TEST_CASE("group_consistency properties and edge cases", "[pose_leverage]") {
       CHECK(S.dof == G.dof);
       CHECK(close(S.chi2 * s * s, G.chi2, 1e-12));
       CHECK(close(S.shift_chi2 * s * s, G.shift_chi2, 1e-12));
+      CHECK(S.mean_residual == G.mean_residual);  // in sigma units: the noise scale is not in it
+      CHECK((S.shift_covariance / (s * s) - G.shift_covariance).norm() <=
+            1e-12 * G.shift_covariance.norm());
     }
   }
   SECTION("the order of the matches does not matter") {
@@ -707,6 +717,7 @@ TEST_CASE("group_consistency properties and edge cases", "[pose_leverage]") {
       CHECK(P.dof == G.dof);
       CHECK(close(P.chi2, G.chi2, 1e-9));
       CHECK(close(P.shift_chi2, G.shift_chi2, 1e-9));
+      CHECK((P.mean_residual - G.mean_residual).norm() <= 1e-9);
     }
   }
   SECTION("an empty group has no statistics") {
@@ -716,6 +727,8 @@ TEST_CASE("group_consistency properties and edge cases", "[pose_leverage]") {
     CHECK(E.dof == 0);
     CHECK(std::isnan(E.chi2));
     CHECK(std::isnan(E.shift_chi2));
+    CHECK(E.mean_residual.array().isNaN().all());
+    CHECK(E.shift_covariance.array().isNaN().all());
     // Nor one whose matches are all unused.
     f = base;
     for (std::size_t i = 0; i < f.points.size(); ++i)

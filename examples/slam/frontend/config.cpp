@@ -43,7 +43,8 @@ nlohmann::json to_json(const LeverageGuardConfig& guard) {
   if (!guard.enabled) return false;
   return {{"radius_px", guard.radius_px},
           {"max_ratio", guard.max_ratio},
-          {"consistency_z", guard.consistency_z}};
+          {"consistency_z", guard.consistency_z},
+          {"bias_cell_px", guard.bias_cell_px}};
 }
 
 const char* to_string(RoughPoseMethod method) {

@@ -1,9 +1,13 @@
 #include "frontend/leverage_guard.hpp"
 
+#include "frontend/shared_bias.hpp"
+
 #include <fmt/format.h>
 #include <hbos/error.hpp>
 #include <hbos/screening/noise_scale.hpp>
 #include <hbos/screening/pose_leverage.hpp>
+
+#include <Eigen/Cholesky>
 
 #include <cmath>
 #include <cstddef>
@@ -28,6 +32,11 @@ LeverageGuard::LeverageGuard(const LeverageGuardConfig& config) : config_(config
         fmt::format("leverage guard settings: radius {} px, ratio limit {} and consistency z {} "
                     "must be finite and > 0",
                     config_.radius_px, config_.max_ratio, config_.consistency_z));
+  }
+  if (!(std::isfinite(config_.bias_cell_px) && config_.bias_cell_px >= 0.0)) {
+    throw InvalidArgument(fmt::format(
+        "leverage guard settings: shared-bias cell {} px must be finite and >= 0 (0: none)",
+        config_.bias_cell_px));
   }
 }
 
@@ -74,22 +83,39 @@ GuardOutcome LeverageGuard::apply(const std::vector<Eigen::Vector3d>& points,
   // read at the median (the screen's own estimator, hbos/screening/noise_scale.hpp), so a frame
   // noisier than the octave model does not count against the group.
   std::vector<double> rest_residual;
+  std::vector<Eigen::Vector2d> rest_pixel, rest_vector;
   for (std::size_t i = 0; i < n; ++i) {
     if (rest[i] == 0) continue;
     const Eigen::Vector3d p = T_rest * points[i];
-    if (p.z() > 0.0) rest_residual.push_back((camera.project(p) - observed[i]).norm() / sigma[i]);
+    if (!(p.z() > 0.0)) continue;
+    const Eigen::Vector2d r = (camera.project(p) - observed[i]) / sigma[i];
+    rest_residual.push_back(r.norm());
+    rest_pixel.push_back(observed[i]);
+    rest_vector.push_back(r);
   }
   if (rest_residual.empty()) return out;
   const double noise = hbos::detail::rayleigh_scale(rest_residual, rest_residual.size(), 0.5);
   if (!(noise > 0.0)) return out;
+  // The offset the others' neighbourhoods share in this frame.
+  out.shared_bias = config_.bias_cell_px > 0.0
+                        ? shared_bias_scales(rest_pixel, rest_vector, noise, config_.bias_cell_px)
+                        : 0.0;
   const hbos::GroupConsistency consistency = hbos::group_consistency(
       static_cast<Eigen::Index>(n), [&](Eigen::Index i) { return points[at(i)]; },
       [&](Eigen::Index i) { return observed[at(i)]; }, [&](Eigen::Index i) { return sigma[at(i)]; },
       [&](Eigen::Index i) { return inlier[at(i)] != 0; },
       [&](Eigen::Index i) { return near(at(i)); }, camera, T_rest, noise);
   if (consistency.dof == 0) return out;
-  // The group's common shift: a person's rim moves together.
-  out.disagreement = consistency.shift_chi2 / chi_square_2_quantile(config_.consistency_z);
+  // The group's common shift: a person's rim moves together. Static neighbours share a small
+  // offset too, which no number of them averages away: its variance joins the shift's.
+  const double bias = out.shared_bias * noise;
+  const Eigen::Matrix2d C =
+      consistency.shift_covariance + bias * bias * Eigen::Matrix2d::Identity();
+  const Eigen::LLT<Eigen::Matrix2d> C_llt(C);
+  if (C_llt.info() != Eigen::Success) return out;
+  const double shift_chi2 = consistency.mean_residual.dot(C_llt.solve(consistency.mean_residual));
+  out.disagreement = shift_chi2 / chi_square_2_quantile(config_.consistency_z);
+  out.shift_scales = consistency.mean_residual.norm() / noise;
   if (!(out.disagreement > 1.0)) return out;
   for (std::size_t i = 0; i < n; ++i) {
     if (inlier[i] != 0 && near(i)) {

@@ -14,8 +14,10 @@
 /// - the group disagrees with the pose the other survivors give on their own: its residuals
 ///   under that pose exceed what the noise those survivors show and that pose's own
 ///   uncertainty explain (hbos::group_consistency's test of the group's mean residual, at
-///   `consistency_z`).
-/// A decisive group that agrees with the rest (static points along a detector box) is kept.
+///   `consistency_z`); the offset static neighbours share in this frame counted in
+///   (shared_bias.hpp, measured on the others).
+/// A decisive group that agrees with the rest (static points along a detector box) is kept, and
+/// so is one whose small shared offset only its size would make significant.
 
 #include "frontend/config.hpp"
 #include "frontend/pose_refiner.hpp"
@@ -36,9 +38,16 @@ struct GuardOutcome {
   /// hbos::group_leverage's ratio for the survivors near the mask; NaN: not measured (guard
   /// off, no mask distances, or no survivor near the mask)
   double ratio = std::numeric_limits<double>::quiet_NaN();
-  /// The group's disagreement with the others' own pose: hbos::group_consistency's shift_chi2
-  /// over its quantile (> 1: dropped); NaN: not measured (the ratio did not exceed its limit)
+  /// The group's disagreement with the others' own pose: the chi-square of its mean residual
+  /// (hbos::group_consistency's shift, its covariance widened by the shared bias) over its
+  /// quantile (> 1: dropped); NaN: not measured (the ratio did not exceed its limit)
   double disagreement = std::numeric_limits<double>::quiet_NaN();
+  /// The size of the group's shift: the norm of its mean residual under the others' pose, in
+  /// their noise scales; NaN: not measured
+  double shift_scales = std::numeric_limits<double>::quiet_NaN();
+  /// The offset the others' neighbourhoods share, per axis, in noise scales (shared_bias.hpp),
+  /// allowed for in the shift test; NaN: not measured
+  double shared_bias = std::numeric_limits<double>::quiet_NaN();
   int dropped = 0;  ///< survivors near the mask set to rejected
 };
 

@@ -37,17 +37,18 @@ std::string stats_csv(const std::vector<FrameStats>& stats) {
   std::string csv =
       "frame,stamp,features,matches,person_matches,survivors,person_survivors,static_dropped,"
       "rough_pose,ransac_inliers,tracked,threshold,screen_us,refine_us,mask_us,guard_ratio,"
-      "guard_disagreement,guard_dropped\n";
+      "guard_disagreement,guard_shift,guard_bias,guard_dropped\n";
   for (const FrameStats& s : stats) {
     csv += fmt::format(
-        "{},{:.6f},{},{},{},{},{},{},{},{},{},{},{:.1f},{:.1f},{:.1f},{},{},{}\n", s.index, s.stamp,
-        s.features, s.matches, s.person_matches, s.survivors, s.person_survivors, s.static_dropped,
-        s.rough_from_ransac ? "ransac" : "constant-velocity", s.ransac_inliers, s.tracked ? 1 : 0,
-        std::isfinite(s.threshold) ? fmt::format("{:.6g}", s.threshold) : "", s.screen_us,
-        s.refine_us, s.mask_us,
+        "{},{:.6f},{},{},{},{},{},{},{},{},{},{},{:.1f},{:.1f},{:.1f},{},{},{},{},{}\n", s.index,
+        s.stamp, s.features, s.matches, s.person_matches, s.survivors, s.person_survivors,
+        s.static_dropped, s.rough_from_ransac ? "ransac" : "constant-velocity", s.ransac_inliers,
+        s.tracked ? 1 : 0, std::isfinite(s.threshold) ? fmt::format("{:.6g}", s.threshold) : "",
+        s.screen_us, s.refine_us, s.mask_us,
         std::isfinite(s.guard_ratio) ? fmt::format("{:.4g}", s.guard_ratio) : "",
         std::isfinite(s.guard_disagreement) ? fmt::format("{:.4g}", s.guard_disagreement) : "",
-        s.guard_dropped);
+        std::isfinite(s.guard_shift) ? fmt::format("{:.4g}", s.guard_shift) : "",
+        std::isfinite(s.guard_bias) ? fmt::format("{:.4g}", s.guard_bias) : "", s.guard_dropped);
   }
   return csv;
 }

@@ -16,6 +16,7 @@ target_sources(hbos_slam PRIVATE
   ${_hbos_frontend_dir}/frame_matching.cpp
   ${_hbos_frontend_dir}/frame_source.cpp
   ${_hbos_frontend_dir}/leverage_guard.cpp
+  ${_hbos_frontend_dir}/shared_bias.cpp
   ${_hbos_frontend_dir}/mask_distance.cpp
   ${_hbos_frontend_dir}/mask_files.cpp
   ${_hbos_frontend_dir}/orb_extraction.cpp

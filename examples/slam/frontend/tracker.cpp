@@ -109,6 +109,8 @@ TrackResult Tracker::track(const Frame& frame) {
                                             T_candidate, refiner_, out.screen.inlier);
     stats.guard_ratio = guard.ratio;
     stats.guard_disagreement = guard.disagreement;
+    stats.guard_shift = guard.shift_scales;
+    stats.guard_bias = guard.shared_bias;
     stats.guard_dropped = guard.dropped;
 
     // 6. Refine the pose on the final survivors, less those near the mask when they alone would

@@ -49,6 +49,10 @@ struct FrameStats {
   double guard_ratio = std::numeric_limits<double>::quiet_NaN();
   /// its disagreement (> 1: dropped); NaN: not measured (the ratio did not exceed its limit)
   double guard_disagreement = std::numeric_limits<double>::quiet_NaN();
+  /// the size of the group's shift in noise scales; NaN: not measured
+  double guard_shift = std::numeric_limits<double>::quiet_NaN();
+  /// the offset the others' neighbourhoods share [noise scales]; NaN: not measured
+  double guard_bias = std::numeric_limits<double>::quiet_NaN();
   int guard_dropped = 0;  ///< survivors near the mask the guard dropped
 };
 

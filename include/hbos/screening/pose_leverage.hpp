@@ -135,6 +135,15 @@ struct GroupConsistency {
   /// static. A group that moves together (a person's rim) concentrates its evidence here, where
   /// `chi2` spreads it over `dof`. NaN as chi2.
   double shift_chi2 = std::numeric_limits<double>::quiet_NaN();
+  /// The group's mean whitened residual under T_rest [sigma units] and its covariance C if the
+  /// group is static [sigma^2 units]: shift_chi2 = mean_residual^T C^-1 mean_residual. C's
+  /// noise part shrinks as 1 / k, so a large enough group makes any shared offset significant;
+  /// a caller whose static neighbourhoods share a small bias (real depth and timing errors do)
+  /// can add its variance to C and test again. NaN as chi2.
+  Eigen::Vector2d mean_residual =
+      Eigen::Vector2d::Constant(std::numeric_limits<double>::quiet_NaN());
+  Eigen::Matrix2d shift_covariance =
+      Eigen::Matrix2d::Constant(std::numeric_limits<double>::quiet_NaN());
 };
 
 /// Tests whether the matches with `in_group(i)` agree with the others, given `T_rest`: the pose
@@ -222,6 +231,8 @@ GroupConsistency group_consistency(Eigen::Index n, const Point& point, const Obs
   const Eigen::Matrix2d C =
       s2 * (Eigen::Matrix2d::Identity() / k + mean_J * rest.solve(mean_J.transpose()));
   result.shift_chi2 = mean_r.dot(C.llt().solve(mean_r));
+  result.mean_residual = mean_r;
+  result.shift_covariance = C;
   return result;
 }
 

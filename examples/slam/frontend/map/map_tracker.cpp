@@ -150,6 +150,8 @@ TrackResult MapTracker::track(const Frame& frame) {
                                           T_camera_world, refiner_, out.screen.inlier);
   out.stats.guard_ratio = guard.ratio;
   out.stats.guard_disagreement = guard.disagreement;
+  out.stats.guard_shift = guard.shift_scales;
+  out.stats.guard_bias = guard.shared_bias;
   out.stats.guard_dropped = guard.dropped;
   refine_on_survivors(m, out.screen, T_camera_world);
   report_.screen_us = out.screen.screen_us;
