@@ -99,9 +99,8 @@ TEST_CASE("shared bias: properties and edge cases", "[frontend][shared_bias]") {
     CHECK(std::abs(shared_bias_scales(g.pixel, g.residual, 0.8, 40.0) - b) < 1e-9);
   }
   SECTION("too few usable cells: no evidence of a shared offset") {
-    const Field few(field(7, 0.8, 0.4));
     // Cells of 500 px: 2 cells over the image, fewer than the 4 needed.
-    CHECK(shared_bias_scales(few.pixel, few.residual, 0.8, 500.0) == 0.0);
+    CHECK(shared_bias_scales(f.pixel, f.residual, 0.8, 500.0) == 0.0);
     CHECK(shared_bias_scales({}, {}, 0.8, 40.0) == 0.0);
     // 40 px cells that each hold fewer than 8 matches.
     const std::vector<Eigen::Vector2d> sparse_pixel(f.pixel.begin(), f.pixel.begin() + 100);

@@ -150,11 +150,10 @@ struct LeverageGuardConfig {
   double consistency_z = 3.09;
   /// [px] cells in which the offset static neighbours share is measured on the other
   /// survivors, per frame (frontend/shared_bias.hpp), and added to the noise the shift test
-  /// expects. Real frames have one (depth and timing errors move neighbours alike: 0.3 noise
-  /// scales per axis on the 37 real fr1/xyz frames, docs/results.md); without it a large enough
-  /// static group makes any shared offset significant (85 static matches along a detector box,
-  /// 0.65 scales off, were dropped). Rendered frames have none, and a fixed allowance would blunt
-  /// the guard there. 0: assume independent noise.
+  /// expects. Real frames have one (depth and timing errors move neighbours alike); without it a
+  /// large enough static group makes any shared offset significant. Rendered frames have none,
+  /// so a fixed allowance would blunt the guard there. Measured in docs/results.md ("A static
+  /// group's shared offset"). 0: assume independent noise.
   double bias_cell_px = 80.0;
 };
 
