@@ -72,6 +72,7 @@ hbos::ScreenStrategy fuzz_strategy(FuzzInput& in) {
   if (in.flag()) s.gate.floor = in.parameter(2.447);
   if (in.flag()) s.gate.scales = in.parameter(5.0);
   if (in.flag()) s.gate.scale_quantile = in.parameter(0.25);
+  if (in.flag()) s.gate.min_scale = in.parameter(0.408);
   s.coherence.enabled = in.flag();
   if (in.flag()) s.coherence.cell_px = in.parameter(40.0);
   if (in.flag()) s.coherence.depth_ratio = in.parameter(1.15);

@@ -12,7 +12,8 @@
 ///     cells capped (FieldFit), or 0.
 ///  2. d_i = (r_i - c(p_i)) / sigma_i, m_i = |d_i| (or unwhitened), clipped at `magnitude_clip`.
 ///  With the noise gate (the default):
-///  3. s = the robust noise scale of m over F (noise_scale.hpp), G = max(floor, scales s).
+///  3. s = the robust noise scale of m over F (noise_scale.hpp), at least the detector's own
+///     (NoiseGate::min_scale), G = max(floor, scales s).
 ///  4. Evidence per match: coherence l_i (neighbourhood.hpp), mask neighbourhood, history; each
 ///     fires above its floor (mask and history only where m_i is above their `min_scales` s).
 ///  5. B = the matches of F that look static (m <= G, no evidence fired); with
@@ -78,7 +79,8 @@ class ScreenResult {
   [[nodiscard]] Scalar magnitude_cut() const { return magnitude_cut_; }
   /// "px" or "px/sigma".
   [[nodiscard]] const char* magnitude_unit() const { return magnitude_unit_; }
-  /// The frame's robust noise scale s [px/sigma] (HBOS with the noise gate); NaN otherwise.
+  /// The frame's robust noise scale s [px/sigma], at least NoiseGate::min_scale (HBOS with the
+  /// noise gate); NaN otherwise.
   [[nodiscard]] Scalar noise_scale() const { return noise_scale_; }
   /// The coherence evidence l_i of match i (log-likelihood ratio, CoherenceEvidence); 0 when
   /// not computed.
@@ -489,8 +491,10 @@ void ReprojectionScreen<Scalar>::gate_and_evidence(const Matches<Scalar>& matche
   // 3. The noise scale over the fit set and the gate.
   const Column fit = fit_column(matches, r.magnitude_);
   scratch_.assign(fit.data(), fit.data() + fit.size());
-  scale_ = detail::rayleigh_scale(scratch_, scratch_.size(), s.gate.scale_quantile);
-  // A frame whose residuals are all exactly zero has no noise to measure: the floor decides.
+  scale_ = std::max(detail::rayleigh_scale(scratch_, scratch_.size(), s.gate.scale_quantile),
+                    static_cast<Scalar>(s.gate.min_scale));
+  // A frame whose residuals are all exactly zero has no noise to measure: with min_scale 0 the
+  // floor decides.
   const auto floor = static_cast<Scalar>(s.gate.floor);
   gate_ = std::max(floor, static_cast<Scalar>(s.gate.scales) * scale_);
   const Scalar s_eff = std::max(scale_, floor * Scalar(1e-3));

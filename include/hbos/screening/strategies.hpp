@@ -61,7 +61,8 @@ enum class AngleFeature {
 /// The noise gate of the HBOS screen: a cut on the centred, whitened magnitude m that follows
 /// the noise the frame actually has. With s the frame's robust noise scale (the `scale_quantile`
 /// quantile of m over the fit set, through the Rayleigh quantile function: 2-D Gaussian noise of
-/// scale s per axis gives |d| ~ Rayleigh(s)), the gate is G = max(floor, scales * s).
+/// scale s per axis gives |d| ~ Rayleigh(s)), never below `min_scale`, the gate is
+/// G = max(floor, scales * s). The evidence inside the gate is measured in the same s.
 struct NoiseGate {
   bool enabled = true;
   /// [px/sigma] the gate never closes below this. sqrt(5.991): ORB-SLAM2's 95 % chi^2 gate, so
@@ -74,6 +75,15 @@ struct NoiseGate {
   /// the quantile the scale is read from, in (0, 1): a low one stays on the static matches
   /// when a dynamic object holds most of the large residuals.
   double scale_quantile = 0.25;
+  /// [px/sigma] the least noise scale a frame is credited with: the keypoint detector's own
+  /// resolution. ORB finds a keypoint on its pyramid level's pixel grid, and sigma = 1.2^octave
+  /// is that level's pixel, so a residual carries the rounding of two positions, uniform over
+  /// one sigma on each axis: 1/sqrt(6) sigma per axis. A frame can measure less only when its two
+  /// roundings happen to agree (little image motion); that agreement does not hold for a region
+  /// whose rounding falls the other way, and a neighbourhood's shared offset would then look
+  /// significant against a scale no detector delivers. 0 for sub-pixel keypoints (or to measure
+  /// s alone). >= 0.
+  double min_scale = 0.4082482904638631;  // 1 / sqrt(6), rounded to double
 };
 
 /// Spatial coherence: a moving object's matches are neighbours (in the image and in depth) and
@@ -273,6 +283,8 @@ inline void validate(const HbosScreen& s) {
           "NoiseGate scales must be finite and > 0, got ", g.scales);
   require(g.scale_quantile > 0.0 && g.scale_quantile < 1.0,
           "NoiseGate scale_quantile must lie in (0, 1), got ", g.scale_quantile);
+  require(std::isfinite(g.min_scale) && g.min_scale >= 0.0,
+          "NoiseGate min_scale must be finite and >= 0, got ", g.min_scale);
   const CoherenceEvidence& c = s.coherence;
   require(std::isfinite(c.cell_px) && c.cell_px >= 1.0,
           "CoherenceEvidence cell_px must be finite and >= 1, got ", c.cell_px);
