@@ -47,6 +47,14 @@ void add_object(hbos::Matchesd& m, int n, const Vec2& offset, double s, double x
   }
 }
 
+/// The default screen measuring the frame's noise scale alone, without the detector's floor
+/// (NoiseGate::min_scale = 0): the screen before stop 25.
+hbos::HbosScreen without_detector_floor() {
+  hbos::HbosScreen s;
+  s.gate.min_scale = 0.0;
+  return s;
+}
+
 double rejected_share(const hbos::ScreenResult<double>& r, Eigen::Index first, Eigen::Index last) {
   Eigen::Index rejected = 0;
   for (Eigen::Index i = first; i < last; ++i) rejected += r.inlier(i) ? 0 : 1;
@@ -133,9 +141,7 @@ TEST_CASE("the noise gate follows the frame's noise and never closes below chi^2
   for (const double s : {0.1, 0.3, 0.5, 1.0, 2.0, 4.0}) {
     CAPTURE(s);
     const hbos::Matchesd m = static_matches(800, s, 11);
-    hbos::HbosScreen measured_alone;
-    measured_alone.gate.min_scale = 0.0;
-    hbos::ReprojectionScreend unfloored(measured_alone);
+    hbos::ReprojectionScreend unfloored(without_detector_floor());
     CHECK(unfloored.screen(m).noise_scale() == Approx(s).epsilon(0.15));
     hbos::ReprojectionScreend screen;
     const auto& r = screen.screen(m);
@@ -207,9 +213,7 @@ TEST_CASE(
   CHECK(rejected_share(r, moving, m.size()) > 0.9);
 
   // Without the detector's scale (the screen before stop 25) the band is called moving.
-  hbos::HbosScreen measured_alone;
-  measured_alone.gate.min_scale = 0.0;
-  hbos::ReprojectionScreend unfloored(measured_alone);
+  hbos::ReprojectionScreend unfloored(without_detector_floor());
   const auto& u = unfloored.screen(m);
   CHECK(u.noise_scale() < 0.15);
   CHECK(rejected_share(u, band, moving) > 0.3);
