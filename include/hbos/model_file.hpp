@@ -174,8 +174,8 @@ template <class Scalar>
                                                 const std::string& source = "model text") {
   detail::TextReader in(text, source);
   detail::HbosFileReader<Scalar> reader(in);
+  // Not reserved from the header's n_features: each histogram is read before it is stored.
   std::vector<Histogram<Scalar>> histograms;
-  histograms.reserve(static_cast<std::size_t>(reader.n_features()));
   while (reader.features_read() < reader.n_features()) histograms.push_back(reader.next());
   reader.finish();
   try {

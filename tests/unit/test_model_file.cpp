@@ -771,3 +771,61 @@ TEST_CASE("damaged version 2 PyOD-mode model files are refused naming the line a
           {"line 1 (hbos-model-file)", "unsupported format version 3"});
   std::filesystem::remove(path);
 }
+
+TEST_CASE("a PyOD-mode file's header cannot make the loader allocate beyond the file",
+          "[model_file][pyod]") {
+  // n_samples of a billion, backed by two scores: refused at the short score list, after
+  // features whose counts are checked in O(bins) (rebuilding one value per sample would
+  // have allocated gigabytes first; tests/fuzz/corpus/fuzz_model_file/pyod_v2_huge_* is the
+  // input the fuzzer found).
+  const std::string huge =
+      "hbos-model-file 2\nkind pyod\nscalar float\nn_features 2\nn_samples 1000000000\n"
+      "n_bins 4\nalpha 0.1\ntol 0.5\ncontamination 0.1\n"
+      "f 4 -2 2 250000000 250000000 250000000 250000000\n"
+      "f 4 -25 33 250000000 250000000 250000000 250000000\n"
+      "decision_scores 1000000000\n5.24\n3.79\nend\n";
+  try {
+    (void)hbos::pyod_hbos_from_model_text<float>(huge, "h.txt");
+    FAIL("accepted a file with two of a billion scores");
+  } catch (const hbos::InvalidArgument& e) {
+    const std::string what = e.what();
+    INFO(what);
+    CHECK(what.find("h.txt, line 15 (decision_scores)") != std::string::npos);
+  }
+}
+
+TEST_CASE("PyOD-mode counts that no training values could give are refused",
+          "[model_file][pyod]") {
+  // A float feature whose range [1, 1 + 1e-7] is narrower than a float's spacing at 1: every
+  // training value is the float 1, counted in bin 0. Counts in later bins cannot come from
+  // any float data, for the whole loader and for the one-feature reader alike.
+  auto text_with = [](const std::string& feature) {
+    return "hbos-model-file 2\nkind pyod\nscalar float\nn_features 1\nn_samples 40\n"
+           "n_bins 4\nalpha 0.1\ntol 0.5\ncontamination 0.1\n" +
+           feature + "\ndecision_scores 40\n";
+  };
+  auto message = [](const std::string& text) {
+    try {
+      (void)hbos::pyod_hbos_from_model_text<float>(text, "c.txt");
+    } catch (const hbos::InvalidArgument& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  // All in bin 0: the features load, so the file fails later, at its missing scores.
+  CHECK(message(text_with("f 4 1 1.0000001 40 0 0 0")).find("decision_scores") !=
+        std::string::npos);
+  const std::string refused = message(text_with("f 4 1 1.0000001 30 10 0 0"));
+  INFO(refused);
+  CHECK(refused.find("c.txt, line 10 (f): feature 0: the counts do not match the edges") !=
+        std::string::npos);
+  CHECK(refused.find("edges[1] is not counted in bin 1") != std::string::npos);
+  // The same edges in double hold a value of each bin: accepted there.
+  std::string as_double = text_with("f 4 1 1.0000001 30 10 0 0");
+  as_double.replace(as_double.find("scalar float"), 12, "scalar double");
+  try {
+    (void)hbos::pyod_hbos_from_model_text<double>(as_double, "c.txt");
+  } catch (const hbos::InvalidArgument& e) {
+    CHECK(std::string(e.what()).find("decision_scores") != std::string::npos);
+  }
+}

@@ -354,12 +354,10 @@ class PyodHbos {
                       training_scores[i], ")");
     PyodHbos model;
     model.params_ = params;
-    std::vector<Scalar> column;
-    std::vector<std::uint16_t> scored_bins;
     for (Eigen::Index j = 0; j < d; ++j) {
       model.features_.push_back(feature_from_parts(edges[static_cast<std::size_t>(j)],
                                                    counts[static_cast<std::size_t>(j)], n, j,
-                                                   params, GridRule::Always, column, scored_bins));
+                                                   params, GridRule::Always));
     }
     model.set_training_scores(std::move(training_scores));
     return model;
@@ -595,15 +593,14 @@ class PyodHbos {
     return fit_feature(column, stride, n, j, B, lo, hi, params, grid, scored_bins);
   }
 
-  /// Feature j rebuilt from its stored edges and counts of n samples (see from_parts).
-  /// `column` and `scored_bins` are scratch (resized to n).
+  /// Feature j rebuilt from its stored edges and counts of n samples (see from_parts). The
+  /// edges must be numpy's edges of their range, and the counts what fitting would count: a
+  /// training value of bin k is at least edges[k], so the smallest Scalar >= edges[k] must be
+  /// counted in bin k. The check takes O(B) time and memory, not O(n): a damaged file's
+  /// n_samples must not make the loader allocate (one value per sample would).
   [[nodiscard]] static Feature feature_from_parts(const Eigen::VectorXd& e, const Counts& c,
                                                   Eigen::Index n, Eigen::Index j,
-                                                  const PyodParams& params, GridRule grid,
-                                                  std::vector<Scalar>& column,
-                                                  std::vector<std::uint16_t>& scored_bins) {
-    column.resize(static_cast<std::size_t>(n));
-    scored_bins.resize(static_cast<std::size_t>(n));
+                                                  const PyodParams& params, GridRule grid) {
     const Eigen::Index B = c.size();
     detail::require(B >= 1 && e.size() == B + 1, "feature ", j, ": ", e.size(), " edges for ", B,
                     " bins");
@@ -614,22 +611,29 @@ class PyodHbos {
     for (Eigen::Index k = 0; k < B; ++k) {
       detail::require(c[k] >= 0 && c[k] <= n - filled, "feature ", j, ": counts[", k, "] = ", c[k],
                       " is negative or exceeds the ", n, " training samples");
-      // The smallest Scalar >= e_k: in bin k whenever bin k holds a Scalar training value.
-      auto value = static_cast<Scalar>(e[k]);
-      if (static_cast<double>(value) < e[k])
-        value = std::nextafter(value, std::numeric_limits<Scalar>::infinity());
-      std::fill_n(column.begin() + filled, c[k], value);
       filled += c[k];
     }
     detail::require(filled == n, "feature ", j, ": the counts add up to ", filled, ", not to the ",
                     n, " training samples");
-    Feature f =
-        fit_feature(column.data(), 1, n, j, B, e[0], e[B], params, grid, scored_bins.data());
+    Layout layout;
+    Feature f = lay_out(detail::pyod_bin_edges(j, B, e[0], e[B]), layout, wants_grid(grid, n, B));
     detail::require(f.edges == e, "feature ", j,
                     ": the edges are not numpy's edges of their range [", e[0], ", ", e[B], "]");
-    detail::require(f.counts == c, "feature ", j,
-                    ": the counts do not match the edges (a value placed at edges[k] is not ",
-                    "counted in bin k)");
+    for (Eigen::Index k = 0; k < B; ++k) {
+      if (c[k] == 0) continue;
+      auto value = static_cast<Scalar>(e[k]);
+      if (static_cast<double>(value) < e[k])
+        value = std::nextafter(value, std::numeric_limits<Scalar>::infinity());
+      const auto x = static_cast<double>(value);
+      Eigen::Index counted = -1;
+      Eigen::Index scored = -1;
+      if (x >= f.lo && x <= f.hi) f.exact_bins(x, counted, scored);
+      detail::require(counted == k, "feature ", j,
+                      ": the counts do not match the edges (a value placed at edges[", k,
+                      "] is not counted in bin ", k, ")");
+    }
+    f.counts = c;
+    finish(f, layout, n, j, params);
     return f;
   }
 
@@ -980,12 +984,9 @@ class PyodFeatureModel {
     detail::validate(params);
     detail::require(n >= 1 && (!params.auto_bins || n > 3), "a model of ", n,
                     " training samples is not one PyOD fits");
-    std::vector<Scalar> column;
-    std::vector<std::uint16_t> scored_bins;
     PyodFeatureModel out;
     out.j_ = j;
-    out.f_ = Model::feature_from_parts(edges, counts, n, j, params, Model::GridRule::IfPays, column,
-                                       scored_bins);
+    out.f_ = Model::feature_from_parts(edges, counts, n, j, params, Model::GridRule::IfPays);
     return out;
   }
 

@@ -195,8 +195,11 @@ class PyodFileReader {
     const auto declared = in_.value<Eigen::Index>("decision_scores");
     if (declared != n_)
       in_.fail("decision_scores", concat(declared, " scores for n_samples = ", n_));
-    Vector scores(n_);
-    for (Eigen::Index i = 0; i < n_; ++i) scores[i] = in_.bare<Scalar>("decision_scores");
+    // Grown as the values are read, not sized by the header: memory follows the file's length,
+    // so a damaged n_samples ends in an error naming the short list, not in an allocation.
+    std::vector<Scalar> read;
+    for (Eigen::Index i = 0; i < n_; ++i) read.push_back(in_.bare<Scalar>("decision_scores"));
+    Vector scores = Eigen::Map<const Vector>(read.data(), n_);
     std::vector<Scalar> scratch;
     const Scalar percentile = pyod_threshold(scores.data(), n_, params_.contamination, scratch);
     if (version_ == 2) {
@@ -274,8 +277,8 @@ template <class Scalar>
     }
   };
   if (reader.version() == 2) {
+    // Not reserved from the header's n_features: each feature is read before it is stored.
     std::vector<PyodFeatureModel<Scalar>> features;
-    features.reserve(d);
     for (std::size_t j = 0; j < d; ++j) features.push_back(reader.next());
     auto scores = reader.finish();
     return assemble([&] {
@@ -283,10 +286,12 @@ template <class Scalar>
                                              std::move(scores));
     });
   }
-  std::vector<Eigen::VectorXd> edges(d);
-  std::vector<typename PyodHbos<Scalar>::Counts> counts(d);
+  std::vector<Eigen::VectorXd> edges;
+  std::vector<typename PyodHbos<Scalar>::Counts> counts;
   std::size_t line = 0;
-  for (std::size_t j = 0; j < d; ++j) reader.next_parts(edges[j], counts[j], line);
+  for (std::size_t j = 0; j < d; ++j) {
+    reader.next_parts(edges.emplace_back(), counts.emplace_back(), line);
+  }
   auto scores = reader.finish();
   return assemble([&] {
     return PyodHbos<Scalar>::from_parts(edges, counts, reader.params(), std::move(scores));
