@@ -105,6 +105,11 @@ void BM_fill_matches_assign(benchmark::State& state) {
 }
 
 void BM_hbos_default(benchmark::State& s) { run_single(s, hbos::HbosScreen{}); }
+void BM_hbos_norefit(benchmark::State& s) {
+  hbos::HbosScreen h;
+  h.field.refit_on_static = false;
+  run_single(s, h);
+}
 void BM_hbos_paper(benchmark::State& s) { run_single(s, hbos::HbosScreen::paper()); }
 void BM_chi2(benchmark::State& s) { run_single(s, hbos::ChiSquareGate{}); }
 void BM_fixed(benchmark::State& s) { run_single(s, hbos::FixedPixelGate{}); }
@@ -118,6 +123,7 @@ void BM_iterated_chi2(benchmark::State& s) { run_iterated(s, hbos::ChiSquareGate
 BENCHMARK(BM_fill_matches) HBOS_SIZES;
 BENCHMARK(BM_fill_matches_assign) HBOS_SIZES;
 BENCHMARK(BM_hbos_default) HBOS_SIZES;
+BENCHMARK(BM_hbos_norefit) HBOS_SIZES;
 BENCHMARK(BM_hbos_paper) HBOS_SIZES;
 BENCHMARK(BM_chi2) HBOS_SIZES;
 BENCHMARK(BM_fixed) HBOS_SIZES;

@@ -65,9 +65,13 @@ std::vector<Cell> grid_cells(const BenchSettings& settings) {
   std::vector<Cell> cells;
   for (const std::string& scenario : settings.scenarios) {
     for (const std::uint64_t seed : settings.seeds) {
-      // Without a mask: no screen at all, and hbos's default screen alone.
-      for (const char* s : {"none", "default"}) {
-        if (has(s)) cells.push_back({scenario, seed, "none", s});
+      // Without a mask: no screen at all and hbos's default screen alone, or every screen.
+      if (settings.every_screen_unmasked) {
+        for (const std::string& s : screens) cells.push_back({scenario, seed, "none", s});
+      } else {
+        for (const char* s : {"none", "default"}) {
+          if (has(s)) cells.push_back({scenario, seed, "none", s});
+        }
       }
       for (const std::string& variant : settings.variants) {
         for (const std::string& s : screens) cells.push_back({scenario, seed, variant, s});

@@ -25,6 +25,9 @@ struct BenchSettings {
   int frames = 300;  ///< frames rendered and tracked per sequence; 0 = the whole trajectory
   /// Screens run (names of screen_strategy_names(); `none` = refine on everything). Empty: all.
   std::vector<std::string> screens;
+  /// Without a mask, run every selected screen, not only `none` and `default`: the comparison
+  /// for a front end whose segmenter missed everyone.
+  bool every_screen_unmasked = false;
   std::string out_dir = "out/dynbench";          ///< table, JSON, figures, cells/
   std::string cache_dir = "out/dynbench/cache";  ///< rendered sequences
   std::string renderer;                          ///< the hbos-render executable
@@ -62,7 +65,8 @@ struct Cell {
 
 /// The cells of `settings`, scenario by scenario and seed by seed: for each, `none` and (when
 /// selected) `default` without a mask, then every variant with every selected screen. A screen
-/// other than `none` and `default` is run only with a mask (the paper's setting).
+/// other than `none` and `default` is run only with a mask (the paper's setting), unless
+/// `every_screen_unmasked`: then every selected screen runs without a mask too.
 [[nodiscard]] std::vector<Cell> grid_cells(const BenchSettings& settings);
 
 /// The rendered sequence's folder in the cache: `<scenario>_seed<S>_<N>f` (`full` for N = 0).

@@ -59,10 +59,19 @@ void add_options(CLI::App& app, CommandOptions& o) {
       ->delimiter(',')
       ->capture_default_str()
       ->check(CLI::IsMember(all_scenarios()));
-  app.add_option("--variants", s.variants, "comma-separated mask variants: " + variants)
+  app.add_option("--variants", s.variants,
+                 "comma-separated mask variants: " + variants +
+                     " ('' = none: with --every-screen-unmasked, the unmasked cells alone)")
       ->delimiter(',')
       ->capture_default_str()
-      ->check(CLI::IsMember(all_variants()));
+      ->check(
+          [](const std::string& v) {
+            const auto& known = all_variants();
+            return v.empty() || std::find(known.begin(), known.end(), v) != known.end()
+                       ? std::string()
+                       : "'" + v + "' is not a mask variant";
+          },
+          "VARIANT");
   app.add_option("--seeds", o.seeds, "comma-separated seeds (default 1,2)")->delimiter(',');
   app.add_option("--frames", s.frames, "frames per sequence (0 = the whole trajectory)")
       ->capture_default_str()
@@ -71,6 +80,8 @@ void add_options(CLI::App& app, CommandOptions& o) {
                  "comma-separated screens (default: all; none = no screen, i.e. 'mask only' with "
                  "a mask)")
       ->delimiter(',');
+  app.add_flag("--every-screen-unmasked", s.every_screen_unmasked,
+               "run every selected screen without a mask too (default: only none and default)");
   app.add_flag("--full", o.full,
                "every scenario at full length, every mask variant, seeds 1,2,3 (explicit "
                "--scenarios/--variants/--seeds/--frames still win)");
@@ -273,6 +284,8 @@ int run_dynbench_command(int argc, const char* const* argv, std::ostream& out, s
     if (app.count("--frames") == 0) s.frames = full.frames;
     if (app.count("--seeds") == 0) o.seeds = full.seeds;
   }
+  s.variants.erase(std::remove(s.variants.begin(), s.variants.end(), std::string()),
+                   s.variants.end());
   if (!o.seeds.empty()) s.seeds = o.seeds;
   s.cache_dir = o.cache_dir.empty() ? (fs::path(s.out_dir) / "cache").string() : o.cache_dir;
   s.base.tracker = o.tracker == "map" ? slam::TrackerKind::kMap : slam::TrackerKind::kFrame;

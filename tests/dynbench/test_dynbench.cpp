@@ -63,6 +63,17 @@ TEST_CASE("dynbench grid: cells, names and screens", "[dynbench]") {
   CHECK(cells.front().id() == "walking_xyz_s1_none_none");
   CHECK(cells[1].id() == "walking_xyz_s1_none_default");
   CHECK(cells[2].id() == "walking_xyz_s1_eroded_none");
+  s.every_screen_unmasked = true;
+  const auto unmasked = hbos::dynbench::grid_cells(s);
+  // Per seed: every screen without a mask too.
+  CHECK(unmasked.size() == 2 * 3 * hbos::dynbench::screens_in_order({}).size());
+  CHECK(unmasked[1].id() == "walking_xyz_s1_none_fixed");
+  s.screens = {"chi2", "default"};
+  const auto chosen = hbos::dynbench::grid_cells(s);
+  CHECK(chosen.size() == 2 * 3 * 2);
+  CHECK(chosen.front().id() == "walking_xyz_s1_none_chi2");
+  s.screens.clear();
+  s.every_screen_unmasked = false;
   const auto order = hbos::dynbench::screens_in_order({"default", "chi2", "none"});
   CHECK(order == std::vector<std::string>{"none", "chi2", "default"});
   CHECK_THROWS_WITH(hbos::dynbench::screens_in_order({"hbos"}), Catch::Contains("'hbos'"));
