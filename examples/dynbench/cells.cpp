@@ -107,6 +107,7 @@ nlohmann::json cell_settings(const BenchSettings& settings, const Cell& cell,
           {"history_forgetting", c.map.history.forgetting},
           {"rough_pose", slam::to_string(c.rough_pose.method)},
           {"ransac_threshold_px", c.rough_pose.ransac_threshold_px},
+          {"history_consensus", c.rough_pose.history_consensus},
           {"orb_features", c.extraction.features},
           {"hbos_version", fmt::format("{}.{}.{}", kVersionMajor, kVersionMinor, kVersionPatch)},
           {"sequence_fingerprint", sequence_fingerprint}};

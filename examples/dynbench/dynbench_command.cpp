@@ -105,6 +105,11 @@ void add_options(CLI::App& app, CommandOptions& o) {
                "frame tracker: pass each match chain's forgetting-weighted outlier share to "
                "the screen (the default screen's persistence evidence)")
       ->capture_default_str();
+  app.add_flag("--history-consensus,!--no-history-consensus", s.base.rough_pose.history_consensus,
+               "frame tracker: when RANSAC's consensus leans on tracks the screen mostly "
+               "rejected before, also try the consensus of the tracks it mostly kept and take "
+               "the better remembered one (needs --track-history; any screen)")
+      ->capture_default_str();
   app.add_flag("--leverage-guard,!--no-leverage-guard", s.base.guard.enabled,
                "drop the survivors near the dynamic-object mask when they alone would decide a "
                "direction of the pose (the mask neighbourhood's leverage guard; any screen)")

@@ -794,8 +794,7 @@ TEST_CASE("a PyOD-mode file's header cannot make the loader allocate beyond the 
   }
 }
 
-TEST_CASE("PyOD-mode counts that no training values could give are refused",
-          "[model_file][pyod]") {
+TEST_CASE("PyOD-mode counts that no training values could give are refused", "[model_file][pyod]") {
   // A float feature whose range [1, 1 + 1e-7] is narrower than a float's spacing at 1: every
   // training value is the float 1, counted in bin 0. Counts in later bins cannot come from
   // any float data, for the whole loader and for the one-feature reader alike.

@@ -19,17 +19,79 @@ RoughPoseEstimator::RoughPoseEstimator(const RoughPoseConfig& config, hbos::Pinh
                     config_.ransac_threshold_px, config_.ransac_iterations,
                     config_.ransac_confidence, config_.min_inliers));
   }
+  if (!(config_.history_rejected_share >= 0.0 && config_.history_rejected_share <= 1.0) ||
+      !(config_.history_trigger_share >= 0.0 && config_.history_trigger_share <= 1.0)) {
+    throw InvalidArgument(
+        fmt::format("rough pose settings: history_rejected_share {} and history_trigger_share {} "
+                    "must lie in [0, 1]",
+                    config_.history_rejected_share, config_.history_trigger_share));
+  }
+}
+
+bool RoughPoseEstimator::consensus(const std::vector<cv::Point3d>& object,
+                                   const std::vector<cv::Point2d>& image,
+                                   const std::vector<std::uint8_t>& use, Eigen::Isometry3d& pose,
+                                   std::vector<int>& inliers) const {
+  std::vector<cv::Point3d> used_object;
+  std::vector<cv::Point2d> used_image;
+  const std::vector<cv::Point3d>* o = &object;
+  const std::vector<cv::Point2d>* i = &image;
+  if (!use.empty()) {
+    for (std::size_t k = 0; k < object.size(); ++k) {
+      if (use[k] == 0) continue;
+      used_object.push_back(object[k]);
+      used_image.push_back(image[k]);
+    }
+    o = &used_object;
+    i = &used_image;
+  }
+  if (static_cast<int>(o->size()) < config_.min_inliers) return false;
+  const cv::Matx33d K(camera_.fx, 0.0, camera_.cx, 0.0, camera_.fy, camera_.cy, 0.0, 0.0, 1.0);
+  cv::Mat rvec, tvec;
+  // Keypoints are already undistorted: no distortion coefficients here.
+  const bool ok = cv::solvePnPRansac(*o, *i, K, cv::noArray(), rvec, tvec,
+                                     /*useExtrinsicGuess=*/false, config_.ransac_iterations,
+                                     static_cast<float>(config_.ransac_threshold_px),
+                                     config_.ransac_confidence, inliers);
+  if (!ok || static_cast<int>(inliers.size()) < config_.min_inliers) return false;
+  cv::Matx33d R;
+  cv::Rodrigues(rvec, R);
+  Eigen::Matrix3d rotation;
+  cv::cv2eigen(cv::Mat(R), rotation);
+  pose = Eigen::Isometry3d::Identity();
+  pose.linear() = rotation;
+  pose.translation() = Eigen::Vector3d(tvec.at<double>(0), tvec.at<double>(1), tvec.at<double>(2));
+  return true;
+}
+
+double RoughPoseEstimator::remembered_support(const std::vector<cv::Point3d>& object,
+                                              const std::vector<cv::Point2d>& image,
+                                              const std::vector<double>& outlier_share,
+                                              const Eigen::Isometry3d& pose) const {
+  const double threshold2 = config_.ransac_threshold_px * config_.ransac_threshold_px;
+  double support = 0.0;
+  for (std::size_t k = 0; k < object.size(); ++k) {
+    const Eigen::Vector3d p = pose * Eigen::Vector3d(object[k].x, object[k].y, object[k].z);
+    if (!(p.z() > 0.0)) continue;
+    const Eigen::Vector2d r = camera_.project(p) - Eigen::Vector2d(image[k].x, image[k].y);
+    if (r.squaredNorm() <= threshold2) support += 1.0 - outlier_share[k];
+  }
+  return support;
 }
 
 RoughPose RoughPoseEstimator::estimate(const std::vector<Eigen::Vector3d>& points_prev,
                                        const std::vector<Eigen::Vector2d>& observed,
-                                       const Eigen::Isometry3d& constant_velocity) const {
+                                       const Eigen::Isometry3d& constant_velocity,
+                                       const std::vector<double>& outlier_share) const {
   RoughPose pose;
   pose.T_cur_prev = constant_velocity;
   if (config_.method == RoughPoseMethod::kConstantVelocity ||
       static_cast<int>(points_prev.size()) < config_.min_inliers) {
     return pose;
   }
+  detail::require(outlier_share.empty() || outlier_share.size() == points_prev.size(),
+                  "rough pose: ", outlier_share.size(), " outlier shares for ", points_prev.size(),
+                  " matches");
   std::vector<cv::Point3d> object;
   std::vector<cv::Point2d> image;
   object.reserve(points_prev.size());
@@ -38,24 +100,36 @@ RoughPose RoughPoseEstimator::estimate(const std::vector<Eigen::Vector3d>& point
     object.emplace_back(points_prev[i].x(), points_prev[i].y(), points_prev[i].z());
     image.emplace_back(observed[i].x(), observed[i].y());
   }
-  const cv::Matx33d K(camera_.fx, 0.0, camera_.cx, 0.0, camera_.fy, camera_.cy, 0.0, 0.0, 1.0);
-  cv::Mat rvec, tvec;
   std::vector<int> inliers;
-  // Keypoints are already undistorted: no distortion coefficients here.
-  const bool ok = cv::solvePnPRansac(object, image, K, cv::noArray(), rvec, tvec,
-                                     /*useExtrinsicGuess=*/false, config_.ransac_iterations,
-                                     static_cast<float>(config_.ransac_threshold_px),
-                                     config_.ransac_confidence, inliers);
-  if (!ok || static_cast<int>(inliers.size()) < config_.min_inliers) return pose;
-  cv::Matx33d R;
-  cv::Rodrigues(rvec, R);
-  Eigen::Matrix3d rotation;
-  cv::cv2eigen(cv::Mat(R), rotation);
-  pose.T_cur_prev.linear() = rotation;
-  pose.T_cur_prev.translation() =
-      Eigen::Vector3d(tvec.at<double>(0), tvec.at<double>(1), tvec.at<double>(2));
+  if (!consensus(object, image, {}, pose.T_cur_prev, inliers)) return pose;
   pose.from_ransac = true;
   pose.ransac_inliers = static_cast<int>(inliers.size());
+  if (!config_.history_consensus || outlier_share.empty()) return pose;
+
+  // The largest consensus is not always the world: a person close to the camera, holding a fifth
+  // of the matches, plus the far background its motion barely moves, can outnumber the rest.
+  // The tracks remember which matches the screen rejected in earlier frames; when the consensus
+  // leans on many such tracks, the consensus of the tracks mostly kept is the other candidate.
+  const auto rejected = [&](std::size_t k) {
+    return outlier_share[k] > config_.history_rejected_share;
+  };
+  std::size_t leaning = 0;
+  for (const int k : inliers) leaning += rejected(static_cast<std::size_t>(k)) ? 1U : 0U;
+  if (static_cast<double>(leaning) <
+      config_.history_trigger_share * static_cast<double>(inliers.size()))
+    return pose;
+  std::vector<std::uint8_t> kept(object.size());
+  for (std::size_t k = 0; k < object.size(); ++k) kept[k] = rejected(k) ? 0 : 1;
+  Eigen::Isometry3d other;
+  std::vector<int> other_inliers;
+  if (!consensus(object, image, kept, other, other_inliers)) return pose;
+  // Both judged on every match, each inlier weighted by how often its track was kept.
+  if (remembered_support(object, image, outlier_share, other) >
+      remembered_support(object, image, outlier_share, pose.T_cur_prev)) {
+    pose.T_cur_prev = other;
+    pose.ransac_inliers = static_cast<int>(other_inliers.size());
+    pose.from_remembered_statics = true;
+  }
   return pose;
 }
 

@@ -10,7 +10,9 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <hbos/screening/pinhole.hpp>
+#include <opencv2/core.hpp>
 
+#include <cstdint>
 #include <vector>
 
 namespace hbos::slam {
@@ -19,6 +21,9 @@ struct RoughPose {
   Eigen::Isometry3d T_cur_prev = Eigen::Isometry3d::Identity();  ///< previous -> current camera
   bool from_ransac = false;  ///< false: the constant-velocity prediction was used
   int ransac_inliers = 0;
+  /// the pose came from the second consensus, of the tracks the screen mostly kept
+  /// (RoughPoseConfig::history_consensus)
+  bool from_remembered_statics = false;
 };
 
 class RoughPoseEstimator {
@@ -28,11 +33,25 @@ class RoughPoseEstimator {
 
   /// `points_prev[i]` (previous camera frame [m]) is observed at `observed[i]` (undistorted [px])
   /// in the current frame. `constant_velocity` is the last frame-to-frame motion.
+  /// `outlier_share`, empty or one per match: the forgetting-weighted share of the match's
+  /// track that the screen rejected before (frontend/outlier_share.hpp).
   [[nodiscard]] RoughPose estimate(const std::vector<Eigen::Vector3d>& points_prev,
                                    const std::vector<Eigen::Vector2d>& observed,
-                                   const Eigen::Isometry3d& constant_velocity) const;
+                                   const Eigen::Isometry3d& constant_velocity,
+                                   const std::vector<double>& outlier_share = {}) const;
 
  private:
+  /// PnP RANSAC on the matches with `use[i]` (all when empty); false when it finds no pose with
+  /// min_inliers.
+  bool consensus(const std::vector<cv::Point3d>& object, const std::vector<cv::Point2d>& image,
+                 const std::vector<std::uint8_t>& use, Eigen::Isometry3d& pose,
+                 std::vector<int>& inliers) const;
+  /// Sum over the matches within the RANSAC threshold under `pose` of 1 - outlier share.
+  [[nodiscard]] double remembered_support(const std::vector<cv::Point3d>& object,
+                                          const std::vector<cv::Point2d>& image,
+                                          const std::vector<double>& outlier_share,
+                                          const Eigen::Isometry3d& pose) const;
+
   RoughPoseConfig config_;
   hbos::PinholeCamerad camera_;
 };

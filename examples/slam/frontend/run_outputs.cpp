@@ -42,9 +42,13 @@ std::string stats_csv(const std::vector<FrameStats>& stats) {
     csv += fmt::format(
         "{},{:.6f},{},{},{},{},{},{},{},{},{},{},{:.1f},{:.1f},{:.1f},{},{},{},{},{}\n", s.index,
         s.stamp, s.features, s.matches, s.person_matches, s.survivors, s.person_survivors,
-        s.static_dropped, s.rough_from_ransac ? "ransac" : "constant-velocity", s.ransac_inliers,
-        s.tracked ? 1 : 0, std::isfinite(s.threshold) ? fmt::format("{:.6g}", s.threshold) : "",
-        s.screen_us, s.refine_us, s.mask_us,
+        s.static_dropped,
+        !s.rough_from_ransac              ? "constant-velocity"
+        : s.rough_from_remembered_statics ? "ransac-remembered-statics"
+                                          : "ransac",
+        s.ransac_inliers, s.tracked ? 1 : 0,
+        std::isfinite(s.threshold) ? fmt::format("{:.6g}", s.threshold) : "", s.screen_us,
+        s.refine_us, s.mask_us,
         std::isfinite(s.guard_ratio) ? fmt::format("{:.4g}", s.guard_ratio) : "",
         std::isfinite(s.guard_disagreement) ? fmt::format("{:.4g}", s.guard_disagreement) : "",
         std::isfinite(s.guard_shift) ? fmt::format("{:.4g}", s.guard_shift) : "",

@@ -21,6 +21,12 @@ bool frame_history_wanted(const Config& config) {
   return hbos_screen != nullptr && hbos_screen->gate.enabled && hbos_screen->history.enabled;
 }
 
+bool frame_history_kept(const Config& config) {
+  if (!config.screen.track_history || !config.screen.screen.has_value()) return false;
+  return frame_history_wanted(config) || (config.rough_pose.history_consensus &&
+                                          config.rough_pose.method == RoughPoseMethod::kRansac);
+}
+
 Tracker::Tracker(const Config& config, const CameraModel& camera)
     : extractor_(config.extraction, camera),
       matcher_(config.matching),
@@ -33,6 +39,7 @@ Tracker::Tracker(const Config& config, const CameraModel& camera)
       mask_reach_px_(mask_evidence_reach_px(config)),
       pass_mask_distance_(mask_reach_px_ > 0.0),
       distance_reach_px_(std::max(mask_reach_px_, guard_.reach_px(config.mask.source))),
+      keep_history_(frame_history_kept(config)),
       pass_history_(frame_history_wanted(config)),
       forgetting_(config.map.history.forgetting) {
   if (!(forgetting_ >= 0.0 && forgetting_ <= 1.0))
@@ -51,7 +58,7 @@ TrackResult Tracker::track(const Frame& frame) {
   Features current = extractor_.extract(frame);
   stats.features = static_cast<int>(current.size());
   if (!previous_) {
-    if (pass_history_) previous_history_.assign(current.size(), OutlierShare{});
+    if (keep_history_) previous_history_.assign(current.size(), OutlierShare{});
     previous_ = std::move(current);
     stats.tracked = true;
     out.T_world_camera = T_world_previous_;
@@ -72,6 +79,7 @@ TrackResult Tracker::track(const Frame& frame) {
   std::vector<Eigen::Vector3d> points_prev;
   std::vector<Eigen::Vector2d> observed;
   std::vector<double> sigma;
+  std::vector<double> outlier_share;  // per match, its chain's (when keep_history_)
   for (const FeatureMatch& m : pairs) {
     const auto p = static_cast<std::size_t>(m.previous), c = static_cast<std::size_t>(m.current);
     points_prev.push_back(camera.back_project(previous.undistorted[p], previous.depth_m[p]));
@@ -79,7 +87,7 @@ TrackResult Tracker::track(const Frame& frame) {
     // ORB-SLAM's noise model: a keypoint at octave o is 1.2^o times less precise.
     sigma.push_back(hbos::sigma_from_octave(current.keypoints[c].octave, scale_factor_));
     if (distance_reach_px_ > 0.0) mask_distance_px.push_back(to_mask.at(current.keypoints[c].pt));
-    if (pass_history_) evidence.outlier_history.push_back(previous_history_[p].share());
+    if (keep_history_) outlier_share.push_back(previous_history_[p].share());
     out.matches.push_back({{current.keypoints[c].pt.x, current.keypoints[c].pt.y},
                            {previous.keypoints[p].pt.x, previous.keypoints[p].pt.y},
                            previous.on_person[p] != 0 || current.on_person[c] != 0,
@@ -87,6 +95,7 @@ TrackResult Tracker::track(const Frame& frame) {
   }
   stats.matches = static_cast<int>(pairs.size());
   if (pass_mask_distance_) evidence.mask_distance_px = mask_distance_px;
+  if (pass_history_) evidence.outlier_history = outlier_share;
 
   // "Tracked" is decided on the final pose, after RANSAC, the screen and the refinement: a
   // frame is tracked when at least min_matches_ screened matches reproject within ORB-SLAM2's
@@ -97,10 +106,11 @@ TrackResult Tracker::track(const Frame& frame) {
   bool supported = false;
   if (stats.matches >= min_matches_) {
     // 4. Rough pose from the matches (PnP RANSAC; constant velocity as fallback).
-    const RoughPose rough = rough_pose_.estimate(points_prev, observed, velocity_);
+    const RoughPose rough = rough_pose_.estimate(points_prev, observed, velocity_, outlier_share);
     Eigen::Isometry3d T_candidate = rough.T_cur_prev;
     stats.rough_from_ransac = rough.from_ransac;
     stats.ransac_inliers = rough.ransac_inliers;
+    stats.rough_from_remembered_statics = rough.from_remembered_statics;
 
     // 5. Screen the reprojection residuals under the rough pose; between rounds the pose is
     //    refined on the survivors and the residuals measured again.
@@ -144,7 +154,7 @@ TrackResult Tracker::track(const Frame& frame) {
   T_world_previous_ = T_world_previous_ * T_cur_prev.inverse();
   velocity_ = T_cur_prev;
   out.T_world_camera = T_world_previous_;
-  if (pass_history_) carry_history(pairs, out.screen.inlier, supported, current.size());
+  if (keep_history_) carry_history(pairs, out.screen.inlier, supported, current.size());
   previous_ = std::move(current);
 
   // 8. Statistics against the person label.

@@ -38,6 +38,9 @@ struct FrameStats {
   int static_dropped = 0;          ///< static and rejected
   bool rough_from_ransac = false;  ///< false: constant velocity (by choice or fallback)
   int ransac_inliers = 0;
+  /// the rough pose is the consensus of the tracks the screen mostly kept
+  /// (RoughPoseConfig::history_consensus)
+  bool rough_from_remembered_statics = false;
   /// The final (refined) pose has >= screen.min_inliers screened matches within the chi-square
   /// gate; else the frame took the constant-velocity prediction.
   bool tracked = false;
@@ -80,6 +83,11 @@ void count_match_statistics(TrackResult& out);
 /// history evidence on).
 [[nodiscard]] bool frame_history_wanted(const Config& config);
 
+/// Whether the frame tracker keeps its match chains' outlier shares at all: for the screen
+/// (frame_history_wanted) or for the rough pose (RoughPoseConfig::history_consensus), whatever
+/// the screen, once there is one whose decisions can be remembered.
+[[nodiscard]] bool frame_history_kept(const Config& config);
+
 /// Not thread-safe; one per sequence.
 class Tracker {
  public:
@@ -108,11 +116,12 @@ class Tracker {
   double mask_reach_px_;      ///< [px] how far from the mask the screen's evidence reaches
   bool pass_mask_distance_;   ///< the screen sees each match's distance to the frame's mask
   double distance_reach_px_;  ///< [px] mask distances measured this far (screen and guard)
+  bool keep_history_;         ///< the match chains' outlier shares are kept (frame_history_kept)
   bool pass_history_;         ///< the screen sees each match's chain's outlier share
   double forgetting_;
 
   std::optional<Features> previous_;
-  /// per keypoint of previous_ (when pass_history_): the outlier share of its match chain
+  /// per keypoint of previous_ (when keep_history_): the outlier share of its match chain
   std::vector<OutlierShare> previous_history_;
   Eigen::Isometry3d T_world_previous_ = Eigen::Isometry3d::Identity();
   Eigen::Isometry3d velocity_ = Eigen::Isometry3d::Identity();  ///< last T_cur_prev

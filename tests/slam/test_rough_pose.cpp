@@ -1,0 +1,160 @@
+// The rough pose (frontend/rough_pose.hpp): PnP RANSAC, and its second consensus from the tracks
+// the screen mostly kept (RoughPoseConfig::history_consensus).
+
+#include <catch2/catch.hpp>
+
+#include "frontend/config.hpp"
+#include "frontend/rough_pose.hpp"
+#include "frontend/tracker.hpp"
+
+#include <hbos/error.hpp>
+
+#include <random>
+#include <vector>
+
+namespace {
+
+/// A scene where a person outnumbers the static matches: `statics` points spread over the image
+/// at 2.5-5 m moving with the camera's motion, `people` points in a compact block at 1.2-1.4 m
+/// that also move 4 cm sideways on their own. Observations carry 0.3 px of noise.
+struct TwoMotions {
+  std::vector<Eigen::Vector3d> points;
+  std::vector<Eigen::Vector2d> observed;
+  std::vector<bool> on_person;
+  Eigen::Isometry3d camera_motion = Eigen::Isometry3d::Identity();
+  Eigen::Isometry3d person_motion = Eigen::Isometry3d::Identity();  // as the camera sees it
+};
+
+TwoMotions two_motions(int statics, int people, unsigned seed) {
+  const hbos::PinholeCamerad camera;
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(20.0, 620.0), v(20.0, 460.0), far(2.5, 5.0);
+  std::uniform_real_distribution<double> pu(380.0, 520.0), pv(150.0, 400.0), near(1.2, 1.4);
+  std::normal_distribution<double> noise(0.0, 0.3);
+  TwoMotions s;
+  s.camera_motion.translation() = Eigen::Vector3d(0.01, -0.004, 0.008);
+  s.camera_motion.linear() =
+      Eigen::AngleAxisd(0.004, Eigen::Vector3d(0.2, 1.0, 0.1).normalized()).toRotationMatrix();
+  Eigen::Isometry3d walk = Eigen::Isometry3d::Identity();
+  walk.translation() = Eigen::Vector3d(0.04, 0.0, 0.01);  // the person's own step
+  s.person_motion = s.camera_motion * walk;
+  for (int i = 0; i < statics + people; ++i) {
+    const bool person = i >= statics;
+    const Eigen::Vector2d uv =
+        person ? Eigen::Vector2d(pu(rng), pv(rng)) : Eigen::Vector2d(u(rng), v(rng));
+    const Eigen::Vector3d p = camera.back_project(uv, person ? near(rng) : far(rng));
+    const Eigen::Vector3d q = (person ? s.person_motion : s.camera_motion) * p;
+    s.points.push_back(p);
+    s.observed.push_back(camera.project(q) + Eigen::Vector2d(noise(rng), noise(rng)));
+    s.on_person.push_back(person);
+  }
+  return s;
+}
+
+double translation_error(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
+  return (a.inverse() * b).translation().norm();
+}
+
+/// The share of the matches within 1 px under `pose` that lie on the person.
+double person_share_of_inliers(const TwoMotions& s, const Eigen::Isometry3d& pose) {
+  const hbos::PinholeCamerad camera;
+  int inliers = 0, person = 0;
+  for (std::size_t i = 0; i < s.points.size(); ++i) {
+    if ((camera.project(pose * s.points[i]) - s.observed[i]).norm() > 1.0) continue;
+    ++inliers;
+    person += s.on_person[i] ? 1 : 0;
+  }
+  return inliers > 0 ? static_cast<double>(person) / inliers : 0.0;
+}
+
+}  // namespace
+
+TEST_CASE("rough pose: the remembered statics' consensus wins over a larger moving one",
+          "[frontend][rough_pose]") {
+  for (const unsigned seed : {1U, 2U, 3U, 4U, 5U}) {
+    INFO("seed " << seed);
+    const TwoMotions s = two_motions(100, 160, seed);
+    hbos::slam::RoughPoseConfig config;
+    const hbos::slam::RoughPoseEstimator estimator(config, hbos::PinholeCamerad{});
+    const Eigen::Isometry3d guess = Eigen::Isometry3d::Identity();
+
+    // Without memory RANSAC takes the larger group: the person.
+    const hbos::slam::RoughPose plain = estimator.estimate(s.points, s.observed, guess);
+    REQUIRE(plain.from_ransac);
+    CHECK(person_share_of_inliers(s, plain.T_cur_prev) > 0.8);
+    CHECK(translation_error(plain.T_cur_prev, s.camera_motion) > 0.02);
+    CHECK_FALSE(plain.from_remembered_statics);
+
+    // The screen rejected the person's tracks before (shares 0.6-1), kept the statics' (0-0.3).
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> high(0.6, 1.0), low(0.0, 0.3);
+    std::vector<double> share;
+    for (const bool person : s.on_person) share.push_back(person ? high(rng) : low(rng));
+    const hbos::slam::RoughPose remembered = estimator.estimate(s.points, s.observed, guess, share);
+    CHECK(remembered.from_remembered_statics);
+    CHECK(translation_error(remembered.T_cur_prev, s.camera_motion) < 0.005);
+    CHECK(person_share_of_inliers(s, remembered.T_cur_prev) < 0.05);
+    CHECK(remembered.ransac_inliers <= 100);
+
+    // A memory that never rejected anything changes nothing (the second RANSAC never runs).
+    const std::vector<double> clean(s.points.size(), 0.0);
+    const hbos::slam::RoughPose same = estimator.estimate(s.points, s.observed, guess, clean);
+    CHECK_FALSE(same.from_remembered_statics);
+    CHECK(same.T_cur_prev.isApprox(plain.T_cur_prev));
+
+    // Switched off, the memory is ignored.
+    config.history_consensus = false;
+    const hbos::slam::RoughPoseEstimator off(config, hbos::PinholeCamerad{});
+    CHECK_FALSE(off.estimate(s.points, s.observed, guess, share).from_remembered_statics);
+  }
+}
+
+TEST_CASE("rough pose: a memory that blames the statics keeps RANSAC's own consensus",
+          "[frontend][rough_pose]") {
+  // The statics outnumber the person and the memory (wrongly) blames a few of them: the second
+  // consensus, of the rest, is the same motion, and the remembered support decides nothing new.
+  const TwoMotions s = two_motions(200, 60, 9);
+  const hbos::slam::RoughPoseEstimator estimator({}, hbos::PinholeCamerad{});
+  std::vector<double> share(s.points.size(), 0.0);
+  for (std::size_t i = 0; i < 40; ++i) share[i] = 1.0;  // 40 statics blamed
+  const auto pose = estimator.estimate(s.points, s.observed, Eigen::Isometry3d::Identity(), share);
+  CHECK(translation_error(pose.T_cur_prev, s.camera_motion) < 0.005);
+  CHECK(person_share_of_inliers(s, pose.T_cur_prev) < 0.05);
+}
+
+TEST_CASE("rough pose: settings and shares out of range are refused, naming them",
+          "[frontend][rough_pose]") {
+  hbos::slam::RoughPoseConfig config;
+  config.history_rejected_share = 1.5;
+  CHECK_THROWS_WITH(hbos::slam::RoughPoseEstimator(config, hbos::PinholeCamerad{}),
+                    Catch::Contains("history_rejected_share 1.5"));
+  config.history_rejected_share = 0.5;
+  config.history_trigger_share = -0.1;
+  CHECK_THROWS_WITH(hbos::slam::RoughPoseEstimator(config, hbos::PinholeCamerad{}),
+                    Catch::Contains("history_trigger_share -0.1"));
+  const TwoMotions s = two_motions(50, 0, 3);
+  const hbos::slam::RoughPoseEstimator estimator({}, hbos::PinholeCamerad{});
+  CHECK_THROWS_WITH(estimator.estimate(s.points, s.observed, Eigen::Isometry3d::Identity(),
+                                       std::vector<double>(3, 0.0)),
+                    Catch::Contains("3 outlier shares for 50 matches"));
+}
+
+TEST_CASE("match chain history: kept for the rough pose whatever the screen",
+          "[frontend][history]") {
+  hbos::slam::Config c;
+  c.screen.track_history = true;
+  for (const char* name : {"default", "chi2", "fixed", "quantile", "mad", "magnitude", "paper"}) {
+    c.screen.select(name);
+    INFO(name);
+    CHECK(hbos::slam::frame_history_kept(c));
+  }
+  c.screen.select("none");  // nothing is ever rejected: nothing to remember
+  CHECK_FALSE(hbos::slam::frame_history_kept(c));
+  c.screen.select("chi2");
+  c.rough_pose.history_consensus = false;
+  CHECK_FALSE(hbos::slam::frame_history_kept(c));
+  c.screen.select("default");
+  CHECK(hbos::slam::frame_history_kept(c));  // the screen still reads it
+  c.screen.track_history = false;
+  CHECK_FALSE(hbos::slam::frame_history_kept(c));
+}
