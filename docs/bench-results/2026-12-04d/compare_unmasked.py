@@ -1,15 +1,17 @@
 """Table for docs/results.md, "Every screen without a mask (stop 26)".
 
 Reads dynbench_unmasked.json (hbos-dynbench --variants '' --every-screen-unmasked --seeds
-1,2,3,4,5: every screen on the rendered walking_xyz and walking_rpy sequences with no mask) and
+1,2,3,4,5: every screen on the rendered walking_xyz and walking_rpy sequences with no mask; or
+the file named on the command line, e.g. dynbench_unmasked_history_consensus.json) and
 prints, per scenario and screen, ATE and RPE (mean ± sd over the seeds) and the default's paired
 difference to each screen (default minus screen, mean ± sd over the seeds; on how many seeds the
 default is lower).
-Run: python3 compare_unmasked.py
+Run: python3 compare_unmasked.py [FILE.json]
 """
 import json
 import os
 import statistics as st
+import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 SEEDS = [1, 2, 3, 4, 5]
@@ -17,7 +19,8 @@ SCREENS = ["none", "fixed", "chi2", "quantile", "mad", "magnitude", "paper", "de
 
 
 def main():
-    with open(os.path.join(HERE, "dynbench_unmasked.json")) as f:
+    name = sys.argv[1] if len(sys.argv) > 1 else "dynbench_unmasked.json"
+    with open(os.path.join(HERE, name)) as f:
         cells = {c["id"]: c["metrics"] for c in json.load(f)["cells"]}
 
     def column(scenario, screen, metric, scale):
