@@ -105,6 +105,8 @@ void BM_fill_matches_assign(benchmark::State& state) {
 }
 
 void BM_hbos_default(benchmark::State& s) { run_single(s, hbos::HbosScreen{}); }
+// The default without its last pass (the affine field refitted on the matches that look static):
+// what that pass costs (docs/benchmarks.md, stop 26; it is kept for its static loss).
 void BM_hbos_norefit(benchmark::State& s) {
   hbos::HbosScreen h;
   h.field.refit_on_static = false;
