@@ -35,7 +35,8 @@ std::string grid_run_settings(const Config& c, const PersonVariant& v, int frame
       v.depth_m, v.speed_px_per_frame, v.start_x_px, to_string(c.mask.source), c.screen.name,
       c.screen.rounds, c.screen.mask_evidence, c.screen.track_history, to_json(c.guard).dump(),
       c.map.history.forgetting, to_string(c.rough_pose.method), c.rough_pose.ransac_threshold_px,
-      c.rough_pose.history_consensus, c.extraction.features, kVersionMajor, kVersionMinor, kVersionPatch);
+      c.rough_pose.history_consensus, c.extraction.features, kVersionMajor, kVersionMinor,
+      kVersionPatch);
 }
 
 std::string grid_cache_file(const Config& c, const PersonVariant& v) {
