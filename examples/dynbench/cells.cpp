@@ -1,6 +1,7 @@
 #include "dynbench/cells.hpp"
 
 #include "frontend/residual_screen.hpp"
+#include "frontend/rough_pose.hpp"
 
 #include <fmt/format.h>
 #include <hbos/error.hpp>
@@ -108,6 +109,7 @@ nlohmann::json cell_settings(const BenchSettings& settings, const Cell& cell,
           {"rough_pose", slam::to_string(c.rough_pose.method)},
           {"ransac_threshold_px", c.rough_pose.ransac_threshold_px},
           {"history_consensus", c.rough_pose.history_consensus},
+          {"history_consensus_rule", slam::kHistoryConsensusRule},
           {"orb_features", c.extraction.features},
           {"hbos_version", fmt::format("{}.{}.{}", kVersionMajor, kVersionMinor, kVersionPatch)},
           {"sequence_fingerprint", sequence_fingerprint}};

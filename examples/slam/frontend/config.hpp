@@ -100,9 +100,10 @@ struct RoughPoseConfig {
   int min_inliers = 12;  ///< fewer RANSAC inliers: fall back to constant velocity
   /// With the tracks' outlier memory (the frame tracker's --track-history): when RANSAC's
   /// consensus holds matches whose tracks the screen mostly rejected before, RANSAC runs again
-  /// on the matches it mostly kept, and the pose with the larger remembered support (each
-  /// inlier over all matches weighted by 1 - its outlier share) is taken. A person holding a
-  /// fifth of the matches can otherwise win the consensus (docs/results.md, stop 26).
+  /// on the matches whose tracks it screened and mostly kept, and the pose with the larger
+  /// remembered support (each inlier over all matches weighted by its track's static trust,
+  /// OutlierShare::static_trust) is taken. A person holding a fifth of the matches can otherwise
+  /// win the consensus (docs/results.md, stops 26 and 27).
   bool history_consensus = true;
   /// [0, 1] a track is "mostly rejected" above this outlier share
   double history_rejected_share = 0.5;

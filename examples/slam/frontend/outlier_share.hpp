@@ -23,6 +23,18 @@ class OutlierShare {
     return weighted_screenings_ > 0.0 ? weighted_rejections_ / weighted_screenings_ : 0.0;
   }
 
+  /// The forgetting-weighted number of screenings: 0 for a point never screened, at most
+  /// 1 / (1 - forgetting).
+  [[nodiscard]] double screenings() const { return weighted_screenings_; }
+
+  /// How far the screenings vouch for the point as static: its forgetting-weighted kept
+  /// screenings over screenings + 1, in [0, 1). The 1 is a prior screening that rejected it, so
+  /// a point never screened has no trust (0) where its share would say "never rejected", and
+  /// trust grows with each screening that kept it.
+  [[nodiscard]] double static_trust() const {
+    return (weighted_screenings_ - weighted_rejections_) / (weighted_screenings_ + 1.0);
+  }
+
  private:
   double weighted_rejections_ = 0.0;
   double weighted_screenings_ = 0.0;

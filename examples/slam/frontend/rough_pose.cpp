@@ -66,7 +66,7 @@ bool RoughPoseEstimator::consensus(const std::vector<cv::Point3d>& object,
 
 double RoughPoseEstimator::remembered_support(const std::vector<cv::Point3d>& object,
                                               const std::vector<cv::Point2d>& image,
-                                              const std::vector<double>& outlier_share,
+                                              const std::vector<OutlierShare>& memory,
                                               const Eigen::Isometry3d& pose) const {
   const double threshold2 = config_.ransac_threshold_px * config_.ransac_threshold_px;
   double support = 0.0;
@@ -74,7 +74,7 @@ double RoughPoseEstimator::remembered_support(const std::vector<cv::Point3d>& ob
     const Eigen::Vector3d p = pose * Eigen::Vector3d(object[k].x, object[k].y, object[k].z);
     if (!(p.z() > 0.0)) continue;
     const Eigen::Vector2d r = camera_.project(p) - Eigen::Vector2d(image[k].x, image[k].y);
-    if (r.squaredNorm() <= threshold2) support += 1.0 - outlier_share[k];
+    if (r.squaredNorm() <= threshold2) support += memory[k].static_trust();
   }
   return support;
 }
@@ -82,15 +82,15 @@ double RoughPoseEstimator::remembered_support(const std::vector<cv::Point3d>& ob
 RoughPose RoughPoseEstimator::estimate(const std::vector<Eigen::Vector3d>& points_prev,
                                        const std::vector<Eigen::Vector2d>& observed,
                                        const Eigen::Isometry3d& constant_velocity,
-                                       const std::vector<double>& outlier_share) const {
+                                       const std::vector<OutlierShare>& memory) const {
   RoughPose pose;
   pose.T_cur_prev = constant_velocity;
   if (config_.method == RoughPoseMethod::kConstantVelocity ||
       static_cast<int>(points_prev.size()) < config_.min_inliers) {
     return pose;
   }
-  detail::require(outlier_share.empty() || outlier_share.size() == points_prev.size(),
-                  "rough pose: ", outlier_share.size(), " outlier shares for ", points_prev.size(),
+  detail::require(memory.empty() || memory.size() == points_prev.size(),
+                  "rough pose: ", memory.size(), " track memories for ", points_prev.size(),
                   " matches");
   std::vector<cv::Point3d> object;
   std::vector<cv::Point2d> image;
@@ -104,14 +104,16 @@ RoughPose RoughPoseEstimator::estimate(const std::vector<Eigen::Vector3d>& point
   if (!consensus(object, image, {}, pose.T_cur_prev, inliers)) return pose;
   pose.from_ransac = true;
   pose.ransac_inliers = static_cast<int>(inliers.size());
-  if (!config_.history_consensus || outlier_share.empty()) return pose;
+  if (!config_.history_consensus || memory.empty()) return pose;
 
   // The largest consensus is not always the world: a person close to the camera, holding a fifth
   // of the matches, plus the far background its motion barely moves, can outnumber the rest.
   // The tracks remember which matches the screen rejected in earlier frames; when the consensus
   // leans on many such tracks, the consensus of the tracks mostly kept is the other candidate.
+  // A track never screened is not among them: it has no memory, and a person's tracks are born
+  // again and again as the body turns (docs/results.md, stop 27).
   const auto rejected = [&](std::size_t k) {
-    return outlier_share[k] > config_.history_rejected_share;
+    return memory[k].share() > config_.history_rejected_share;
   };
   std::size_t leaning = 0;
   for (const int k : inliers) leaning += rejected(static_cast<std::size_t>(k)) ? 1U : 0U;
@@ -119,13 +121,15 @@ RoughPose RoughPoseEstimator::estimate(const std::vector<Eigen::Vector3d>& point
       config_.history_trigger_share * static_cast<double>(inliers.size()))
     return pose;
   std::vector<std::uint8_t> kept(object.size());
-  for (std::size_t k = 0; k < object.size(); ++k) kept[k] = rejected(k) ? 0 : 1;
+  for (std::size_t k = 0; k < object.size(); ++k)
+    kept[k] = !rejected(k) && memory[k].screenings() > 0.0 ? 1 : 0;
   Eigen::Isometry3d other;
   std::vector<int> other_inliers;
   if (!consensus(object, image, kept, other, other_inliers)) return pose;
-  // Both judged on every match, each inlier weighted by how often its track was kept.
-  if (remembered_support(object, image, outlier_share, other) >
-      remembered_support(object, image, outlier_share, pose.T_cur_prev)) {
+  // Both judged on every match, each inlier weighted by how far its track's screenings vouch
+  // for it: a newborn track counts for nothing, not as a track never rejected.
+  if (remembered_support(object, image, memory, other) >
+      remembered_support(object, image, memory, pose.T_cur_prev)) {
     pose.T_cur_prev = other;
     pose.ransac_inliers = static_cast<int>(other_inliers.size());
     pose.from_remembered_statics = true;

@@ -6,6 +6,7 @@
 /// option, measured in docs/slam_demo.md).
 
 #include "frontend/config.hpp"
+#include "frontend/outlier_share.hpp"
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -16,6 +17,12 @@
 #include <vector>
 
 namespace hbos::slam {
+
+/// Which rule the history consensus follows; part of the cached runs' keys (hbos-dynbench's
+/// cells, the variant grid's runs), so that a run made under an older rule is not reused.
+/// 1: support weighted by 1 - outlier share (stop 26). 2: by static trust, and tracks never
+/// screened left out of the second consensus (stop 27).
+inline constexpr int kHistoryConsensusRule = 2;
 
 struct RoughPose {
   Eigen::Isometry3d T_cur_prev = Eigen::Isometry3d::Identity();  ///< previous -> current camera
@@ -33,12 +40,12 @@ class RoughPoseEstimator {
 
   /// `points_prev[i]` (previous camera frame [m]) is observed at `observed[i]` (undistorted [px])
   /// in the current frame. `constant_velocity` is the last frame-to-frame motion.
-  /// `outlier_share`, empty or one per match: the forgetting-weighted share of the match's
-  /// track that the screen rejected before (frontend/outlier_share.hpp).
+  /// `memory`, empty or one per match: the screenings of the match's track so far
+  /// (frontend/outlier_share.hpp).
   [[nodiscard]] RoughPose estimate(const std::vector<Eigen::Vector3d>& points_prev,
                                    const std::vector<Eigen::Vector2d>& observed,
                                    const Eigen::Isometry3d& constant_velocity,
-                                   const std::vector<double>& outlier_share = {}) const;
+                                   const std::vector<OutlierShare>& memory = {}) const;
 
  private:
   /// PnP RANSAC on the matches with `use[i]` (all when empty); false when it finds no pose with
@@ -46,10 +53,11 @@ class RoughPoseEstimator {
   bool consensus(const std::vector<cv::Point3d>& object, const std::vector<cv::Point2d>& image,
                  const std::vector<std::uint8_t>& use, Eigen::Isometry3d& pose,
                  std::vector<int>& inliers) const;
-  /// Sum over the matches within the RANSAC threshold under `pose` of 1 - outlier share.
+  /// Sum over the matches within the RANSAC threshold under `pose` of their tracks' static
+  /// trust (OutlierShare::static_trust).
   [[nodiscard]] double remembered_support(const std::vector<cv::Point3d>& object,
                                           const std::vector<cv::Point2d>& image,
-                                          const std::vector<double>& outlier_share,
+                                          const std::vector<OutlierShare>& memory,
                                           const Eigen::Isometry3d& pose) const;
 
   RoughPoseConfig config_;

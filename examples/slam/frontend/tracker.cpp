@@ -79,7 +79,8 @@ TrackResult Tracker::track(const Frame& frame) {
   std::vector<Eigen::Vector3d> points_prev;
   std::vector<Eigen::Vector2d> observed;
   std::vector<double> sigma;
-  std::vector<double> outlier_share;  // per match, its chain's (when keep_history_)
+  std::vector<OutlierShare> memory;   // per match, its chain's screenings (when keep_history_)
+  std::vector<double> outlier_share;  // per match, its chain's share (idem)
   for (const FeatureMatch& m : pairs) {
     const auto p = static_cast<std::size_t>(m.previous), c = static_cast<std::size_t>(m.current);
     points_prev.push_back(camera.back_project(previous.undistorted[p], previous.depth_m[p]));
@@ -87,7 +88,10 @@ TrackResult Tracker::track(const Frame& frame) {
     // ORB-SLAM's noise model: a keypoint at octave o is 1.2^o times less precise.
     sigma.push_back(hbos::sigma_from_octave(current.keypoints[c].octave, scale_factor_));
     if (distance_reach_px_ > 0.0) mask_distance_px.push_back(to_mask.at(current.keypoints[c].pt));
-    if (keep_history_) outlier_share.push_back(previous_history_[p].share());
+    if (keep_history_) {
+      memory.push_back(previous_history_[p]);
+      outlier_share.push_back(memory.back().share());
+    }
     out.matches.push_back({{current.keypoints[c].pt.x, current.keypoints[c].pt.y},
                            {previous.keypoints[p].pt.x, previous.keypoints[p].pt.y},
                            previous.on_person[p] != 0 || current.on_person[c] != 0,
@@ -106,7 +110,7 @@ TrackResult Tracker::track(const Frame& frame) {
   bool supported = false;
   if (stats.matches >= min_matches_) {
     // 4. Rough pose from the matches (PnP RANSAC; constant velocity as fallback).
-    const RoughPose rough = rough_pose_.estimate(points_prev, observed, velocity_, outlier_share);
+    const RoughPose rough = rough_pose_.estimate(points_prev, observed, velocity_, memory);
     Eigen::Isometry3d T_candidate = rough.T_cur_prev;
     stats.rough_from_ransac = rough.from_ransac;
     stats.ransac_inliers = rough.ransac_inliers;

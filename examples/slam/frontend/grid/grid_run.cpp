@@ -6,6 +6,7 @@
 #include "frontend/map/map_run.hpp"
 #include "frontend/person_scenario.hpp"
 #include "frontend/residual_screen.hpp"
+#include "frontend/rough_pose.hpp"
 #include "frontend/sequence_run.hpp"
 
 #include <fmt/format.h>
@@ -29,14 +30,14 @@ std::string grid_run_settings(const Config& c, const PersonVariant& v, int frame
   return fmt::format(
       "dataset={} frames={} camera={} tracker={} person={} depth={} speed={} start={} mask={} "
       "screen={} rounds={} mask_evidence={} track_history={} guard={} forgetting={} rough={} "
-      "ransac_px={} history_consensus={} "
+      "ransac_px={} history_consensus={} rule={} "
       "features={} hbos={}.{}.{}",
       c.dataset.path, frames, c.dataset.camera, to_string(c.tracker), c.scenario.person_dir,
       v.depth_m, v.speed_px_per_frame, v.start_x_px, to_string(c.mask.source), c.screen.name,
       c.screen.rounds, c.screen.mask_evidence, c.screen.track_history, to_json(c.guard).dump(),
       c.map.history.forgetting, to_string(c.rough_pose.method), c.rough_pose.ransac_threshold_px,
-      c.rough_pose.history_consensus, c.extraction.features, kVersionMajor, kVersionMinor,
-      kVersionPatch);
+      c.rough_pose.history_consensus, kHistoryConsensusRule, c.extraction.features, kVersionMajor,
+      kVersionMinor, kVersionPatch);
 }
 
 std::string grid_cache_file(const Config& c, const PersonVariant& v) {
