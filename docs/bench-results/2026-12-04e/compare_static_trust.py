@@ -12,12 +12,18 @@ paired change (after - before, mean ± sd) and on how many seeds ATE fell, rose 
 change under 0.005 cm counts as the same).
 Run: python3 compare_static_trust.py
 """
+import importlib.util
 import json
 import os
-import statistics as st
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-SEEDS = [1, 2, 3, 4, 5]
+# The row format is stop 26's (compare_history_consensus.py beside ../2026-12-04d).
+_spec = importlib.util.spec_from_file_location(
+    "compare_history_consensus",
+    os.path.join(HERE, "..", "2026-12-04d", "compare_history_consensus.py"))
+_stop26 = importlib.util.module_from_spec(_spec)
+_spec.loader.exec_module(_stop26)
+row = _stop26.row
 
 
 def load(*parts):
@@ -25,35 +31,26 @@ def load(*parts):
         return {c["id"]: c["metrics"] for c in json.load(f)["cells"]}
 
 
-def row(before, after, scenario, mask, screen):
-    ids = [f"{scenario}_s{s}_{mask}_{screen}" for s in SEEDS]
-    b = [100 * before[i]["ate_rmse_m"] for i in ids]
-    a = [100 * after[i]["ate_rmse_m"] for i in ids]
-    rb = [1000 * before[i]["rpe_trans_m_per_frame"] for i in ids]
-    ra = [1000 * after[i]["rpe_trans_m_per_frame"] for i in ids]
-    d = [x - y for x, y in zip(a, b)]
-    fell = sum(x < -0.005 for x in d)
-    rose = sum(x > 0.005 for x in d)
-    print(f"| {scenario} | {mask} | {screen} | {st.mean(b):.2f} -> {st.mean(a):.2f} | "
-          f"{st.mean(d):+.2f} ± {st.stdev(d):.2f} | {fell} / {rose} / {5 - fell - rose} | "
-          f"{st.mean(rb):.2f} -> {st.mean(ra):.2f} |")
+# (before, after, masks, screens) per block of the table.
+BLOCKS = [
+    (("..", "2026-12-04d", "dynbench_unmasked_history_consensus.json"),
+     ("dynbench_unmasked_static_trust.json",), ["none"],
+     ["none", "fixed", "chi2", "quantile", "mad", "magnitude", "paper", "default"]),
+    (("..", "2026-12-04d", "dynbench_masked_history_consensus.json"),
+     ("dynbench_masked_static_trust.json",), ["eroded", "boxes", "person_missed"], ["default"]),
+]
 
 
 def main():
     print("| scenario | mask | screen | ATE [cm] before -> after | paired change | seeds fell / "
           "rose / same | RPE [mm/frame] before -> after |")
     print("|---|---|---|---|---|---|---|")
-    before = load("..", "2026-12-04d", "dynbench_unmasked_history_consensus.json")
-    after = load("dynbench_unmasked_static_trust.json")
-    for scenario in ["walking_xyz", "walking_rpy"]:
-        for screen in ["none", "fixed", "chi2", "quantile", "mad", "magnitude", "paper",
-                       "default"]:
-            row(before, after, scenario, "none", screen)
-    before = load("..", "2026-12-04d", "dynbench_masked_history_consensus.json")
-    after = load("dynbench_masked_static_trust.json")
-    for scenario in ["walking_xyz", "walking_rpy"]:
-        for mask in ["eroded", "boxes", "person_missed"]:
-            row(before, after, scenario, mask, "default")
+    for before_path, after_path, masks, screens in BLOCKS:
+        before, after = load(*before_path), load(*after_path)
+        for scenario in ["walking_xyz", "walking_rpy"]:
+            for mask in masks:
+                for screen in screens:
+                    row(before, after, scenario, mask, screen)
 
 
 if __name__ == "__main__":
