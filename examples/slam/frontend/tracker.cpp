@@ -79,8 +79,7 @@ TrackResult Tracker::track(const Frame& frame) {
   std::vector<Eigen::Vector3d> points_prev;
   std::vector<Eigen::Vector2d> observed;
   std::vector<double> sigma;
-  std::vector<OutlierShare> memory;   // per match, its chain's screenings (when keep_history_)
-  std::vector<double> outlier_share;  // per match, its chain's share (idem)
+  std::vector<OutlierShare> memory;  // per match, its chain's screenings (when keep_history_)
   for (const FeatureMatch& m : pairs) {
     const auto p = static_cast<std::size_t>(m.previous), c = static_cast<std::size_t>(m.current);
     points_prev.push_back(camera.back_project(previous.undistorted[p], previous.depth_m[p]));
@@ -88,10 +87,7 @@ TrackResult Tracker::track(const Frame& frame) {
     // ORB-SLAM's noise model: a keypoint at octave o is 1.2^o times less precise.
     sigma.push_back(hbos::sigma_from_octave(current.keypoints[c].octave, scale_factor_));
     if (distance_reach_px_ > 0.0) mask_distance_px.push_back(to_mask.at(current.keypoints[c].pt));
-    if (keep_history_) {
-      memory.push_back(previous_history_[p]);
-      outlier_share.push_back(memory.back().share());
-    }
+    if (keep_history_) memory.push_back(previous_history_[p]);
     out.matches.push_back({{current.keypoints[c].pt.x, current.keypoints[c].pt.y},
                            {previous.keypoints[p].pt.x, previous.keypoints[p].pt.y},
                            previous.on_person[p] != 0 || current.on_person[c] != 0,
@@ -99,7 +95,10 @@ TrackResult Tracker::track(const Frame& frame) {
   }
   stats.matches = static_cast<int>(pairs.size());
   if (pass_mask_distance_) evidence.mask_distance_px = mask_distance_px;
-  if (pass_history_) evidence.outlier_history = outlier_share;
+  if (pass_history_) {
+    evidence.outlier_history.reserve(memory.size());
+    for (const OutlierShare& chain : memory) evidence.outlier_history.push_back(chain.share());
+  }
 
   // "Tracked" is decided on the final pose, after RANSAC, the screen and the refinement: a
   // frame is tracked when at least min_matches_ screened matches reproject within ORB-SLAM2's
