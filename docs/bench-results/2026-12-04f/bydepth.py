@@ -7,20 +7,13 @@ Usage: bydepth.py SEQUENCE_DIR SEGMENT.npy
 """
 import numpy as np, sys
 seq = sys.argv[1]; S = np.load(sys.argv[2])
-from scipy.spatial.transform import Rotation as R
+from tum_poses import GroundTruth
 fr = S[:,0].astype(int); res = S[:,17]; st = S[:,11]==0
-gt = {}
-for l in open(seq + '/groundtruth.txt'):
-    if l.startswith('#'): continue
-    v = [float(x) for x in l.split()]
-    T = np.eye(4); T[:3, :3] = R.from_quat(v[4:8]).as_matrix(); T[:3, 3] = v[1:4]; gt[v[0]] = T
-gts = np.array(sorted(gt))
-stamps = [float(a.split()[0]) for a in open(seq + '/rgb.txt') if not a.startswith('#')]
-def pose_at(t): return gt[gts[np.argmin(abs(gts - t))]]
+truth = GroundTruth(seq)
 along = np.zeros(len(S)); trans_flow = np.zeros(len(S)); rad = np.zeros(len(S)); radial_res = np.zeros(len(S))
 for f in np.unique(fr):
     m = fr == f
-    G = np.linalg.inv(pose_at(stamps[f])) @ pose_at(stamps[f - 1])
+    G = truth.motion(f)
     fx, fy, cx, cy = S[m][0, 13:17]
     X = S[m][:, 5:8]
     P = X @ G[:3, :3].T + G[:3, 3]

@@ -20,19 +20,12 @@ for i in range(len(S)):
     if len(w): jump[i] = (w.max()-w.min())/S[i,4]
 # the residual's component along the image motion the ground truth predicts (not the raw
 # flow, observed minus previous keypoint: that shares the observation's noise with the residual)
-from scipy.spatial.transform import Rotation as R
-gt = {}
-for l in open(seq + '/groundtruth.txt'):
-    if l.startswith('#'): continue
-    v = [float(x) for x in l.split()]
-    T = np.eye(4); T[:3, :3] = R.from_quat(v[4:8]).as_matrix(); T[:3, 3] = v[1:4]; gt[v[0]] = T
-gts = np.array(sorted(gt))
-stamps = [float(a.split()[0]) for a in open(seq + '/rgb.txt') if not a.startswith('#')]
-def pose_at(t): return gt[gts[np.argmin(abs(gts - t))]]
+from tum_poses import GroundTruth
+truth = GroundTruth(seq)
 along = np.zeros(len(S))
 for f in np.unique(fr):
     m = fr == f
-    G = np.linalg.inv(pose_at(stamps[f])) @ pose_at(stamps[f - 1])
+    G = truth.motion(f)
     fx, fy, cx, cy = S[m][0, 13:17]
     P = S[m][:, 5:8] @ G[:3, :3].T + G[:3, 3]
     pred = np.stack([fx * P[:, 0] / P[:, 2] + cx, fy * P[:, 1] / P[:, 2] + cy], 1)

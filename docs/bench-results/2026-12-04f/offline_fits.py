@@ -16,26 +16,14 @@ import numpy as np
 from scipy.optimize import least_squares
 from scipy.spatial.transform import Rotation as R
 
+from tum_poses import GroundTruth
+
 seq, segment = sys.argv[1], sys.argv[2]
 S = np.load(segment)
 frame = S[:, 0].astype(int)
 res = S[:, 17]
 static = S[:, 11] == 0
-gt = {}
-for line in open(seq + '/groundtruth.txt'):
-    if line.startswith('#'):
-        continue
-    v = [float(x) for x in line.split()]
-    T = np.eye(4)
-    T[:3, :3] = R.from_quat(v[4:8]).as_matrix()
-    T[:3, 3] = v[1:4]
-    gt[v[0]] = T
-gt_stamps = np.array(sorted(gt))
-stamps = [float(a.split()[0]) for a in open(seq + '/rgb.txt') if not a.startswith('#')]
-
-
-def pose_at(t):
-    return gt[gt_stamps[np.argmin(abs(gt_stamps - t))]]
+truth = GroundTruth(seq)
 
 
 observed_at = {(frame[i], round(S[i, 8], 2), round(S[i, 9], 2)): i for i in range(len(S))}
@@ -76,7 +64,7 @@ for f in np.unique(frame):
     m = (frame == f) & static & (res < 2.447)
     if (split and ((m & chained).sum() < 30 or (m & ~chained).sum() < 30)) or m.sum() < 30:
         continue
-    G = np.linalg.inv(pose_at(stamps[f])) @ pose_at(stamps[f - 1])  # T_cur_prev
+    G = truth.motion(f)  # T_cur_prev
     fx, fy, cx, cy = cam = tuple(S[m][0, 13:17])
     sig, X, obs, ch = S[m][:, 10], S[m][:, 5:8], S[m][:, 8:10], chained[m]
     z = X[:, 2]

@@ -4,23 +4,15 @@ the tracker with diagnostic.patch applied (HBOS_DUMP=file). One segment per dynb
 Usage: static_residuals.py DUMP SEQUENCE_DIR OUT_PREFIX
 """
 import numpy as np, sys
-from scipy.spatial.transform import Rotation as R
+from tum_poses import GroundTruth
 from PIL import Image
 seq = sys.argv[2]
 D = np.loadtxt(sys.argv[1])
 fr = D[:,0].astype(int)
 resets = np.where(np.diff(fr) < 0)[0]
 segs = np.split(np.arange(len(D)), resets+1)
-gt = {}
-for l in open(seq+'/groundtruth.txt'):
-    if l.startswith('#'): continue
-    v = [float(x) for x in l.split()]
-    T = np.eye(4); T[:3,:3] = R.from_quat(v[4:8]).as_matrix(); T[:3,3] = v[1:4]; gt[v[0]] = T
-gts = np.array(sorted(gt))
-rgb = [l.split() for l in open(seq+'/rgb.txt') if not l.startswith('#')]
-stamps = [float(a[0]) for a in rgb]
+truth = GroundTruth(seq)
 deps = [l.split() for l in open(seq+'/depth.txt') if not l.startswith('#')]
-def Tgt(t): return gt[gts[np.argmin(abs(gts-t))]]
 depth_cache = {}
 def depth_img(idx):
     if idx not in depth_cache:
@@ -33,8 +25,7 @@ for si, seg in enumerate(segs):
     res = np.zeros(len(S)); edge = np.zeros(len(S)); resv = np.zeros((len(S),2))
     for f in np.unique(S[:,0].astype(int)):
         m = S[:,0] == f
-        Tc = Tgt(stamps[f]); Tp = Tgt(stamps[f-1])
-        T = np.linalg.inv(Tc) @ Tp
+        T = truth.motion(f)
         X = S[m][:,5:8]
         P = X @ T[:3,:3].T + T[:3,3]
         fx, fy, cx, cy = S[m][0,13:17]
