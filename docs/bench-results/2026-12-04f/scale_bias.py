@@ -18,4 +18,4 @@ for c in sys.argv[2:]:
     E = np.array(E); M = np.array(M); ROT=np.array(ROT)
     scale = (E*M).sum()/ (M*M).sum()
     perp = E - np.outer((E*M).sum(1)/np.maximum((M*M).sum(1),1e-12), 1)*M
-    print(c.split('/')[-1], f'translation scale bias {100*scale:+.2f} %, mean err vec (cam) mm {np.round(E.mean(0)*1000,3)}, |mean|/mean|e| {np.linalg.norm(E.mean(0))/np.linalg.norm(E,axis=1).mean():.3f}, mean rot err vec mdeg {np.round(np.degrees(ROT.mean(0))*1000,2)}')
+    print(c.split('/')[-1], f'translation scale bias {100*scale:+.2f} %, mean err vec (cam) mm {np.round(E.mean(0)*1000,3)}, mean |e| mm {1000*np.linalg.norm(E,axis=1).mean():.3f}, |mean|/mean|e| {np.linalg.norm(E.mean(0))/np.linalg.norm(E,axis=1).mean():.3f}, mean rot err vec mdeg {np.round(np.degrees(ROT.mean(0))*1000,2)}')
