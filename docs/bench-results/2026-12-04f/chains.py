@@ -7,18 +7,14 @@ Usage: chains.py SEGMENT.npy
 import sys
 import numpy as np
 
+from match_chains import predecessors
+
 S = np.load(sys.argv[1])
-frame = S[:, 0].astype(int)
 res = S[:, 17]
 residual_px = S[:, 19:21] * S[:, 10:11]
 static = S[:, 11] == 0
-observed_at = {(frame[i], round(S[i, 8], 2), round(S[i, 9], 2)): i for i in range(len(S))}
-pairs = []
-for i in range(len(S)):
-    j = observed_at.get((frame[i] - 1, round(S[i, 2], 2), round(S[i, 3], 2)))
-    if j is not None:
-        pairs.append((j, i))
-pairs = np.array(pairs)
+before = predecessors(S)
+pairs = np.array([(j, i) for i, j in enumerate(before) if j >= 0])
 print('chained pairs', len(pairs), 'of', len(S), 'matches')
 a, b = residual_px[pairs[:, 0]], residual_px[pairs[:, 1]]
 ok = (res[pairs[:, 0]] < 2.447) & (res[pairs[:, 1]] < 2.447) & static[pairs[:, 0]] & static[pairs[:, 1]]

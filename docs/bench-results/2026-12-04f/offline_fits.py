@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Stop 28: refit each frame's pose offline on the static matches inside the 2.447 px/sigma
-gate under the ground-truth motion (Gauss-Newton-free: scipy least_squares, Huber 2.447, started
-at the ground truth), and report the translation's scale bias (estimated minus true step,
+gate under the ground-truth motion (scipy's least_squares, Huber 2.447, started at the ground
+truth), and report the translation's scale bias (estimated minus true step,
 projected on the true step, summed over frames) with a jackknife standard error over frames.
 Fits: the full 6-DoF pose; the translation alone with the rotation held at the ground truth;
 the same 3D points with synthetic observations (Gaussian noise of 0.43 px/sigma per axis,
@@ -16,6 +16,7 @@ import numpy as np
 from scipy.optimize import least_squares
 from scipy.spatial.transform import Rotation as R
 
+from match_chains import predecessors
 from tum_poses import GroundTruth
 
 seq, segment = sys.argv[1], sys.argv[2]
@@ -26,9 +27,7 @@ static = S[:, 11] == 0
 truth = GroundTruth(seq)
 
 
-observed_at = {(frame[i], round(S[i, 8], 2), round(S[i, 9], 2)): i for i in range(len(S))}
-chained = np.array([(frame[i] - 1, round(S[i, 2], 2), round(S[i, 3], 2)) in observed_at
-                    for i in range(len(S))])
+chained = predecessors(S) >= 0
 
 
 def project(T, X, fx, fy, cx, cy):
