@@ -11,6 +11,7 @@
 #include "frontend/map/map_run.hpp"
 #include "frontend/map/projection_matcher.hpp"
 #include "frontend/map/screening_history.hpp"
+#include "frontend/residual_screen.hpp"
 #include "frontend/sequence_run.hpp"
 #include "frontend/slam_command.hpp"
 #include "test_frontend_support.hpp"
@@ -139,6 +140,66 @@ TEST_CASE("screening history: forgotten outlier share and the culling rule", "[m
   h.record(false, c.forgetting);
   CHECK(h.consecutive_rejections() == 0);
   CHECK(h.distrusted(c));
+}
+
+TEST_CASE("screening history: a new point is on probation until the screen keeps it",
+          "[map][history]") {
+  slam::HistoryConfig c;  // probation_kept 2
+  slam::ScreeningHistory h;
+  CHECK_FALSE(h.proven(c));
+  h.record(true, c.forgetting);  // rejections do not count towards it
+  h.record(false, c.forgetting);
+  CHECK(h.kept() == 1);
+  CHECK_FALSE(h.proven(c));
+  h.record(false, c.forgetting);
+  CHECK(h.kept() == 2);
+  CHECK(h.proven(c));
+  c.probation_kept = 0;  // ORB-SLAM2: every point decides at once
+  CHECK(slam::ScreeningHistory{}.proven(c));
+}
+
+TEST_CASE("provisional matches stay out of the refinement while enough others remain",
+          "[map][history]") {
+  //                                  kept: 1  1  0  1  1  1
+  const std::vector<std::uint8_t> provisional{0, 1, 1, 0, 1, 0};
+  std::vector<std::uint8_t> use{1, 1, 0, 1, 1, 1};
+  slam::keep_out_provisional(provisional, 3, use);  // 3 kept out of probation: enough
+  CHECK(use == std::vector<std::uint8_t>{1, 0, 0, 1, 0, 1});
+  std::vector<std::uint8_t> few{1, 1, 0, 1, 1, 0};
+  slam::keep_out_provisional(provisional, 3, few);  // only 2: everyone kept decides
+  CHECK(few == std::vector<std::uint8_t>{1, 1, 0, 1, 1, 0});
+  std::vector<std::uint8_t> none{1, 1, 1};
+  slam::keep_out_provisional({}, 3, none);  // no probation: nothing changes
+  CHECK(none == std::vector<std::uint8_t>{1, 1, 1});
+}
+
+TEST_CASE("new keyframe points: the near ones, then the room beyond them", "[map][keyframes]") {
+  // 150 keypoints on a person 1.7 m away, 300 on the room at 3.5-4.5 m, 20 without depth.
+  std::vector<float> depth;
+  for (int i = 0; i < 150; ++i) depth.push_back(1.7f + 0.001f * static_cast<float>(i));
+  for (int i = 0; i < 300; ++i) depth.push_back(3.5f + 0.003f * static_cast<float>(i));
+  for (int i = 0; i < 20; ++i) depth.push_back(0.f);
+  const auto farther_than = [&](const std::vector<int>& points, float m) {
+    return std::count_if(points.begin(), points.end(),
+                         [&](int k) { return depth[static_cast<std::size_t>(k)] > m; });
+  };
+  slam::KeyframeConfig c;  // close 3 m, at least 100, 100 far
+  std::vector<std::uint8_t> taken(depth.size(), 0);
+  const std::vector<int> ours = slam::select_new_points(depth, taken, c);
+  CHECK(ours.size() == 250);
+  CHECK(farther_than(ours, 3.f) == 100);
+  CHECK(farther_than(ours, 3.8f) == 0);  // the nearest of the room first
+  // ORB-SLAM2's rule makes every new point on the person.
+  c.min_far_points = 0;
+  CHECK(farther_than(slam::select_new_points(depth, taken, c), 3.f) == 0);
+  // Taken keypoints (they observe a map point) make none; with few near ones, at least
+  // min_new_points are made.
+  c = slam::KeyframeConfig{};
+  c.min_far_points = 0;
+  std::fill(taken.begin(), taken.begin() + 140, std::uint8_t{1});
+  const std::vector<int> few = slam::select_new_points(depth, taken, c);
+  CHECK(few.size() == 100);
+  CHECK(std::all_of(few.begin(), few.end(), [](int k) { return k >= 140 && k < 450; }));
 }
 
 TEST_CASE("rotation histogram keeps the consistent orientations", "[map][matcher]") {

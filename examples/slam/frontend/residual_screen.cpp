@@ -30,6 +30,18 @@ double value_or_nan(const std::vector<double>& column, std::size_t i) {
 
 }  // namespace
 
+void keep_out_provisional(const std::vector<std::uint8_t>& provisional, int min_survivors,
+                          std::vector<std::uint8_t>& use) {
+  if (provisional.empty()) return;
+  int proven = 0;
+  for (std::size_t i = 0; i < use.size(); ++i)
+    proven += (use[i] != 0 && (i >= provisional.size() || provisional[i] == 0)) ? 1 : 0;
+  if (proven < min_survivors) return;
+  for (std::size_t i = 0; i < use.size() && i < provisional.size(); ++i) {
+    if (provisional[i] != 0) use[i] = 0;
+  }
+}
+
 const std::vector<std::string>& screen_strategy_names() {
   static const std::vector<std::string> names = [] {
     std::vector<std::string> list;
@@ -90,11 +102,17 @@ ScreenOutcome ResidualScreen::screen(const std::vector<Eigen::Vector3d>& points_
   hbos::Matches<double>& matches = impl_->matches;
   matches.clear();
   impl_->match_of.clear();
+  // Provisional matches are passed as flagged only where that keeps them out of the fit and
+  // nothing more (another policy would reject them or ignore the flag).
+  const bool flag_provisional = config_.screen->flagged == hbos::FlaggedPolicy::FitWithout;
+  const auto provisional = [&](std::size_t i) {
+    return i < evidence.provisional.size() && evidence.provisional[i] != 0;
+  };
   for (std::size_t i = 0; i < n; ++i) {
     const Eigen::Vector3d p = T_cur_prev * points_prev[i];
     if (!(p.z() > 0.0)) continue;
     const auto k = matches.size();
-    matches.add(camera.project(p), observed[i], sigma[i]);
+    matches.add(camera.project(p), observed[i], sigma[i], flag_provisional && provisional(i));
     matches.set_depth(k, p.z());
     const double mask_distance = value_or_nan(evidence.mask_distance_px, i);
     if (!std::isnan(mask_distance)) matches.set_mask_distance(k, mask_distance);
@@ -119,6 +137,7 @@ ScreenOutcome ResidualScreen::screen(const std::vector<Eigen::Vector3d>& points_
     use.assign(n, 0);
     for (Eigen::Index k = 0; k < matches.size(); ++k)
       use[impl_->match_of[static_cast<std::size_t>(k)]] = result->inlier(k) ? 1 : 0;
+    keep_out_provisional(evidence.provisional, static_cast<int>(config_.min_inliers), use);
     refiner.refine(points_prev, observed, sigma, use, T_cur_prev);
     for (Eigen::Index k = 0; k < matches.size(); ++k) {
       const Eigen::Vector3d p =

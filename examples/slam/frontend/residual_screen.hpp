@@ -49,7 +49,16 @@ struct MatchEvidence {
   /// The persistence prior the caller keeps per track or map point: in [0, 1], the
   /// forgetting-weighted share of past frames in which this point was screened out.
   std::vector<double> outlier_history;
+  /// 1: the match is on probation: it is screened like any, but neither shapes the screen's fit
+  /// (it is passed as flagged, under FlaggedPolicy::FitWithout) nor the pose refined between
+  /// rounds. The map tracker sets it for map points the screen has not yet kept often enough.
+  std::vector<std::uint8_t> provisional;
 };
+
+/// Takes the provisional matches (MatchEvidence::provisional) out of `use`, the matches a pose
+/// is refined on, unless fewer than `min_survivors` others would remain (then `use` stays).
+void keep_out_provisional(const std::vector<std::uint8_t>& provisional, int min_survivors,
+                          std::vector<std::uint8_t>& use);
 
 class ResidualScreen {
  public:

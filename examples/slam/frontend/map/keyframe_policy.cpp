@@ -1,5 +1,8 @@
 #include "frontend/map/keyframe_policy.hpp"
 
+#include <algorithm>
+#include <cstddef>
+
 namespace hbos::slam {
 
 bool need_keyframe(const KeyframeEvidence& e, const KeyframeConfig& c) {
@@ -16,6 +19,25 @@ bool need_keyframe(const KeyframeEvidence& e, const KeyframeConfig& c) {
   const bool c1c = tracked < 0.25f * reference || close;
   const bool c2 = (tracked < ratio * reference || close) && e.tracked > c.min_tracked;
   return (c1a || c1b || c1c) && c2;
+}
+
+std::vector<int> select_new_points(const std::vector<float>& depth_m,
+                                   const std::vector<std::uint8_t>& taken,
+                                   const KeyframeConfig& c) {
+  std::vector<int> fresh;
+  for (std::size_t k = 0; k < depth_m.size(); ++k) {
+    const bool is_taken = k < taken.size() && taken[k] != 0;
+    if (!is_taken && depth_m[k] > 0.f) fresh.push_back(static_cast<int>(k));
+  }
+  const auto depth = [&](int k) { return depth_m[static_cast<std::size_t>(k)]; };
+  std::sort(fresh.begin(), fresh.end(), [&](int a, int b) { return depth(a) < depth(b); });
+  std::size_t close = 0;
+  while (close < fresh.size() && depth(fresh[close]) < c.close_depth_m) ++close;
+  const auto at_most = [&](int n) { return std::min(fresh.size(), static_cast<std::size_t>(n)); };
+  const std::size_t far =
+      std::min(fresh.size() - close, static_cast<std::size_t>(c.min_far_points));
+  fresh.resize(std::max(close + far, at_most(c.min_new_points)));
+  return fresh;
 }
 
 }  // namespace hbos::slam

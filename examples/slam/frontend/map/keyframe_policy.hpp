@@ -21,6 +21,9 @@
 
 #include "frontend/map/map_config.hpp"
 
+#include <cstdint>
+#include <vector>
+
 namespace hbos::slam {
 
 /// What the rule looks at, counted by the tracker.
@@ -35,6 +38,16 @@ struct KeyframeEvidence {
 };
 
 [[nodiscard]] bool need_keyframe(const KeyframeEvidence& e, const KeyframeConfig& config);
+
+/// The keypoints a new keyframe makes map points from (Tracking::CreateNewKeyFrame, RGB-D, with
+/// one departure): those with depth (`depth_m` > 0) and not `taken` (they observe a point),
+/// nearest first: all closer than close_depth_m,
+/// then min_far_points of the farther ones, and at least min_new_points in all. ORB-SLAM2 stops
+/// at the near ones (or the min_new_points nearest): a person the mask missed, nearer than the
+/// room, then makes every new point, and the map follows the person.
+[[nodiscard]] std::vector<int> select_new_points(const std::vector<float>& depth_m,
+                                                 const std::vector<std::uint8_t>& taken,
+                                                 const KeyframeConfig& config);
 
 /// The keyframes that must observe a reference point for it to count in r: 2, or 1 while the
 /// map has at most 2 keyframes.

@@ -40,7 +40,12 @@ struct KeyframeConfig {
   int tracked_close_min = 100;    ///< fewer tracked close points than this, and
   int untracked_close_min = 70;   ///< more close points without a map point: insert
   int min_new_points = 100;       ///< new points: all closer than close_depth_m, at least this many
-  int init_min_features = 500;    ///< the first keyframe needs this many keypoints (ORB-SLAM2: 500)
+  /// New points beyond close_depth_m besides the near ones, nearest first (ORB-SLAM2: 0). A person
+  /// the mask misses is often the nearest thing in view: with 0 the new points of every keyframe
+  /// were the person's, and the map followed them (docs/results.md, "A missed person and the map
+  /// tracker's new points").
+  int min_far_points = 100;
+  int init_min_features = 500;  ///< the first keyframe needs this many keypoints (ORB-SLAM2: 500)
 };
 
 /// Tracking success and relocalisation (Tracking::Relocalization).
@@ -65,6 +70,13 @@ struct HistoryConfig {
   int cull_min_screenings = 4;  ///< ... after at least this many screenings
   /// points with a larger share (screened at least twice) are kept out of the rough pose
   double rough_pose_max_share = 0.5;
+  /// A new point decides the pose (rough pose, refinement) only once the screen has kept it
+  /// this many times; until then it is screened against the pose its elders give. 0: at once
+  /// (ORB-SLAM2). Measured in docs/results.md ("A missed person and the map tracker's new points").
+  int probation_kept = 2;
+  /// Fewer matched points out of probation than this, and every match decides: a view the map
+  /// has just reached would otherwise have no pose (ORB-SLAM2's 30 inliers to be tracked).
+  int min_proven_matches = 30;
 };
 
 struct MapConfig {

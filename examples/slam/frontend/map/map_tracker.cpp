@@ -130,7 +130,8 @@ TrackResult MapTracker::track(const Frame& frame) {
     lose(out);
     return out;
   }
-  // 4. Rough pose: PnP RANSAC on those matches, without the points the screen distrusts.
+  // 4. Rough pose: PnP RANSAC on those matches, without the points the screen distrusts, and
+  //    without new points still on probation while enough others are out of it.
   T_camera_world = rough_pose(current, point_of, T_camera_world, out.stats);
   report_.rough_us = clock.lap();
 
@@ -140,12 +141,13 @@ TrackResult MapTracker::track(const Frame& frame) {
   report_.local_map_us = clock.lap();
 
   // 6. Reproject every match under the rough pose and screen the residuals (the rounds refine
-  //    the pose on the survivors), with each point's screening history as evidence.
+  //    the pose on the survivors out of probation), with each point's screening history as
+  //    evidence.
   const Matched m = gather(frame, current, point_of, out);
   out.screen =
       screen_.screen(m.points_world, m.observed, m.sigma, T_camera_world, refiner_, m.evidence);
-  // 7. Optimise the pose on the survivors (Huber), less those near the mask when they alone
-  //    would decide a direction of the pose (frontend/leverage_guard.hpp).
+  // 7. Optimise the pose on the survivors out of probation (Huber), less those near the mask
+  //    when they alone would decide a direction of the pose (frontend/leverage_guard.hpp).
   const GuardOutcome guard = guard_.apply(m.points_world, m.observed, m.sigma, m.mask_distance_px,
                                           T_camera_world, refiner_, out.screen.inlier);
   out.stats.guard_ratio = guard.ratio;
@@ -226,14 +228,25 @@ Eigen::Isometry3d MapTracker::lightweight_tracking(const Frame& frame, const Fea
   return last_T_camera_world_;
 }
 
+bool MapTracker::enough_proven(const std::vector<int>& point_of) const {
+  const HistoryConfig& h = config_.map.history;
+  if (h.probation_kept <= 0) return false;
+  int proven = 0;
+  for (const int id : point_of) proven += (id >= 0 && map_.point(id).history.proven(h)) ? 1 : 0;
+  return proven >= h.min_proven_matches;
+}
+
 Eigen::Isometry3d MapTracker::rough_pose(const Features& current, const std::vector<int>& point_of,
                                          const Eigen::Isometry3d& guess, FrameStats& stats) const {
   std::vector<Eigen::Vector3d> points;
   std::vector<Eigen::Vector2d> observed;
+  const HistoryConfig& h = config_.map.history;
+  const bool on_probation = enough_proven(point_of);
   for (std::size_t k = 0; k < point_of.size(); ++k) {
     if (point_of[k] < 0) continue;
     const MapPoint& p = map_.point(point_of[k]);
-    if (p.history.distrusted(config_.map.history)) continue;  // never builds the rough pose
+    if (p.history.distrusted(h)) continue;  // never builds the rough pose
+    if (on_probation && !p.history.proven(h)) continue;
     points.push_back(p.position_world);
     observed.push_back(current.undistorted[k]);
   }
@@ -286,6 +299,7 @@ MapTracker::Matched MapTracker::gather(const Frame& frame, const Features& curre
   const double reach_px = std::max(evidence_reach_px, guard_.reach_px(config_.mask.source));
   const bool mask_distances = reach_px > 0.0;
   const MaskDistance to_mask(mask_distances ? frame.mask : cv::Mat(), reach_px);
+  const bool on_probation = enough_proven(point_of);
   for (std::size_t k = 0; k < point_of.size(); ++k) {
     const int id = point_of[k];
     if (id < 0) continue;
@@ -299,6 +313,9 @@ MapTracker::Matched MapTracker::gather(const Frame& frame, const Features& curre
         hbos::sigma_from_octave(current.keypoints[k].octave, config_.extraction.scale_factor));
     if (mask_distances) m.mask_distance_px.push_back(to_mask.at(current.keypoints[k].pt));
     m.evidence.outlier_history.push_back(p.history.outlier_share());
+    if (on_probation) {
+      m.evidence.provisional.push_back(p.history.proven(config_.map.history) ? 0 : 1);
+    }
     const cv::Point2f& now = current.keypoints[k].pt;
     const auto before = last_pixel_of_point_.find(id);
     const cv::Point2f then = before != last_pixel_of_point_.end() ? before->second : now;
@@ -315,7 +332,9 @@ void MapTracker::refine_on_survivors(const Matched& m, ScreenOutcome& screen,
   const auto survivors = std::count(screen.inlier.begin(), screen.inlier.end(), std::uint8_t{1});
   if (survivors < config_.screen.min_inliers) return;
   const auto start = Clock::now();
-  refiner_.refine(m.points_world, m.observed, m.sigma, screen.inlier, T);
+  std::vector<std::uint8_t> use = screen.inlier;
+  keep_out_provisional(m.evidence.provisional, static_cast<int>(config_.screen.min_inliers), use);
+  refiner_.refine(m.points_world, m.observed, m.sigma, use, T);
   screen.refine_us += std::chrono::duration<double, std::micro>(Clock::now() - start).count();
 }
 
@@ -416,21 +435,11 @@ void MapTracker::insert_keyframe(const Frame& frame, Features current,
                                  const std::vector<int>& point_of,
                                  const Eigen::Isometry3d& T_camera_world) {
   const KeyframeConfig& kc = config_.map.keyframes;
-  // New points (Tracking::CreateNewKeyFrame, RGB-D): keypoints with depth and no map point,
-  // nearest first; all closer than close_depth_m, and at least min_new_points.
-  std::vector<int> fresh;
-  for (std::size_t k = 0; k < current.size(); ++k) {
-    const bool has_point = k < point_of.size() && point_of[k] >= 0;
-    if (!has_point && current.depth_m[k] > 0.f) fresh.push_back(static_cast<int>(k));
-  }
-  std::sort(fresh.begin(), fresh.end(),
-            [&](int a, int b) { return current.depth_m[at(a)] < current.depth_m[at(b)]; });
-  std::size_t n = 0;
-  while (n < fresh.size() && (current.depth_m[at(fresh[n])] < kc.close_depth_m ||
-                              static_cast<int>(n) < kc.min_new_points)) {
-    ++n;
-  }
-  fresh.resize(n);
+  // New points (keyframe_policy.hpp) from the keypoints that observe none.
+  std::vector<std::uint8_t> taken(current.size(), 0);
+  for (std::size_t k = 0; k < current.size() && k < point_of.size(); ++k)
+    taken[k] = point_of[k] >= 0 ? 1 : 0;
+  const std::vector<int> fresh = select_new_points(current.depth_m, taken, kc);
 
   KeyFrame keyframe;
   keyframe.frame_index = frame.index;

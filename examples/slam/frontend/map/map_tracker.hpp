@@ -80,6 +80,9 @@ class MapTracker {
   TrackResult initialise(const Frame& frame, Features current, TrackResult out);
   Eigen::Isometry3d lightweight_tracking(const Frame& frame, const Features& current,
                                          const KeypointGrid& grid, std::vector<int>& point_of);
+  /// Enough matched points are out of probation (HistoryConfig) for them alone to decide the
+  /// pose; the others are then provisional.
+  [[nodiscard]] bool enough_proven(const std::vector<int>& point_of) const;
   Eigen::Isometry3d rough_pose(const Features& current, const std::vector<int>& point_of,
                                const Eigen::Isometry3d& guess, FrameStats& stats) const;
   void match_local_map(const Frame& frame, const Features& current, const KeypointGrid& grid,
