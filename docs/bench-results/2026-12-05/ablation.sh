@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
-# Stop 29: which of the map tracker's three new-point changes does what. Runs hbos-slam (built
-# with the throwaway HBOS_ABL switch of ablation_switch.patch) with the default screen on the
-# cached rendered sequences, each change switched off in turn (all on, and all off, are the
-# default-screen cells of the two dynbench runs before_after.py compares), and writes
-# one summary.json per run under OUT/<config>/<scenario>_s<seed>_<mask>/.
+# Stop 29: which of the map tracker's new-point changes does what. Runs hbos-slam built with
+# ablation_and_dump.patch (the throwaway switch HBOS_ABL, and the tried rule "skip", on unless
+# HBOS_ABL holds noskip: so noskip is the kept code) with the default screen on the cached
+# rendered sequences, with changes switched off (noprob: probation, nofar: the room's points),
+# and writes one summary.json per run under OUT/<config>/<scenario>_s<seed>_<mask>/.
+# ablation_table.py collects them.
 # Usage: bash ablation.sh HBOS_SLAM CACHE OUT
 set -euo pipefail
 slam=$1 cache=$2 out=$3
