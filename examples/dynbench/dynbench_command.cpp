@@ -6,6 +6,7 @@
 #include "dynbench/cell_run.hpp"
 #include "dynbench/cells.hpp"
 #include "dynbench/progress_bar.hpp"
+#include "dynbench/screen_comparison.hpp"
 #include "dynbench/sequences.hpp"
 #include "dynbench/summary.hpp"
 
@@ -251,12 +252,15 @@ int run_grid(const BenchSettings& settings, std::ostream& out, std::ostream& err
   std::vector<CellOutcome> outcomes;
   for (std::size_t i = 0; i < cells.size(); ++i) outcomes.push_back({cells[i], *results[i]});
   const std::vector<TableRow> rows = table_rows(outcomes);
-  const std::string md = table_markdown(rows, settings);
+  const ScreenComparison comparison = compare_screens(outcomes, rows);
+  const std::string md = table_markdown(rows, settings) + comparison_markdown(comparison);
   out << md;
   const fs::path md_path = fs::path(settings.out_dir) / "dynbench.md";
   const fs::path json_path = fs::path(settings.out_dir) / "dynbench.json";
   examples::write_file_atomically(md_path, md);
-  examples::write_file_atomically(json_path, table_json(rows, outcomes, settings).dump(1) + "\n");
+  nlohmann::json json = table_json(rows, outcomes, settings);
+  json["comparison"] = comparison_json(comparison);
+  examples::write_file_atomically(json_path, json.dump(1) + "\n");
   out << "wrote " << md_path.string() << "\nwrote " << json_path.string() << "\n";
   for (const std::string& p : write_bench_figures(settings)) out << "wrote " << p << "\n";
   return kDynbenchOk;
