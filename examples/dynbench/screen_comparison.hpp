@@ -44,8 +44,8 @@ struct RowVerdict {
   std::string verdict;  ///< "best", "tied" or "behind"
 };
 
-/// [cm] a run whose ATE exceeds this lost the room (the rendered room is about 4 m deep; every
-/// screen's mean stays below 1.1 cm on a masked row): listed by name, as means hide which.
+/// [cm] a run whose ATE exceeds this has lost the room, not merely drifted (the rendered
+/// scenes' working runs and their spread: docs/results.md): listed by name, as means hide which.
 inline constexpr double kFailedRunAteCm = 5.0;
 
 struct ScreenComparison {
