@@ -1,6 +1,7 @@
 #include "dynbench/screen_comparison.hpp"
 
 #include "dynbench/paired_statistics.hpp"
+#include "frontend/standing.hpp"
 
 #include <fmt/format.h>
 
@@ -101,8 +102,18 @@ std::vector<RowVerdict> row_verdicts(const std::vector<TableRow>& rows) {
     v.best_other_cm = best->ate_cm.mean;
     v.default_cm = def->ate_cm.mean;
     v.spread_cm = std::max(best->ate_cm.sd, def->ate_cm.sd);
-    const double gap = v.default_cm - v.best_other_cm;
-    v.verdict = gap <= 0.0 ? "best" : gap <= v.spread_cm ? "tied" : "behind";
+    using hbos::slam::Standing;
+    switch (hbos::slam::standing(v.default_cm, v.best_other_cm, v.spread_cm)) {
+      case Standing::best:
+        v.verdict = "best";
+        break;
+      case Standing::tied:
+        v.verdict = "tied";
+        break;
+      case Standing::behind:
+        v.verdict = "behind";
+        break;
+    }
     verdicts.push_back(v);
   }
   return verdicts;

@@ -7,6 +7,7 @@
 #include "frontend/grid/grid_run.hpp"
 #include "frontend/grid/parallax.hpp"
 #include "frontend/grid/variants.hpp"
+#include "frontend/standing.hpp"
 #include "test_frontend_support.hpp"
 
 #include <cmath>
@@ -26,6 +27,27 @@ TEST_CASE("the grid's variants follow the rule and stay in view", "[frontend][gr
     const double end = v.start_x_px + 36 * v.speed_px_per_frame;
     CHECK(std::min(v.start_x_px, end) >= 0.0);
     CHECK(std::max(v.start_x_px, end) + 210 <= 640.0);
+  }
+}
+
+TEST_CASE("the default's standing: best at or below, tied within the spread, behind past it",
+          "[frontend][grid]") {
+  using hbos::slam::Standing;
+  using hbos::slam::standing;
+  CHECK(standing(1.0, 1.0, 0.0) == Standing::best);  // equal means: the default is not behind
+  CHECK(standing(0.9, 1.0, 0.0) == Standing::best);
+  CHECK(standing(1.25, 1.0, 0.25) == Standing::tied);  // a gap of exactly the spread ties
+  CHECK(standing(1.2500001, 1.0, 0.25) == Standing::behind);
+  CHECK(standing(1.0000001, 1.0, 0.0) == Standing::behind);  // no spread: any gap is behind
+  // Monotone in the default's mean: walking it upwards never goes back to a better standing.
+  for (const double spread : {0.0, 0.05, 0.4}) {
+    int last = 0;
+    for (double mean = 0.5; mean < 2.0; mean += 0.01) {
+      const int now = static_cast<int>(standing(mean, 1.0, spread));
+      CHECK(now >= last);
+      last = now;
+    }
+    CHECK(last == static_cast<int>(Standing::behind));
   }
 }
 
