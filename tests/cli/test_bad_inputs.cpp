@@ -395,6 +395,17 @@ TEST_CASE("bad input: hbos-slam --features beyond its bound is a usage error",
   CHECK_THAT(r.err, Contains("--features") && Contains("100000"));
 }
 
+TEST_CASE("bad input: hbos-slam's keypoint spread names its pool beyond the feature bound",
+          "[bad_inputs][hbos_slam]") {
+  const fs::path dir = scratch("slam_spread");
+  const Run pool = run(dir, kSlam, {"--features", "50000", "--orb-spread-px", "64", "--quiet"});
+  CHECK(pool.exit_code == 2);
+  CHECK_THAT(pool.err, Contains("3 x 50000 features = 150000 exceeds 100000"));
+  const Run cell = run(dir, kSlam, {"--orb-spread-px", "-3", "--quiet"});
+  CHECK(cell.exit_code == 2);
+  CHECK_THAT(cell.err, Contains("--orb-spread-px"));
+}
+
 TEST_CASE("bad input: hbos-slam names broken images before it runs", "[bad_inputs][hbos_slam]") {
   const fs::path dir = scratch("slam_images");
   const fs::path seq = copy_sequence(dir, 4);

@@ -75,6 +75,11 @@ struct ExtractionConfig {
   int min_fast_threshold = 7;  ///< retried with this when the first gives too few corners
   double min_depth_m = 0.1;    ///< [m] depth below this counts as invalid
   double max_depth_m = 8.0;    ///< [m] depth above this counts as invalid (Kinect noise)
+  /// [px] > 0: detect `spread_pool` times the features and keep them spread over cells of this
+  /// side, per pyramid level (frontend/keypoint_spread.hpp; ORB-SLAM2 spreads its keypoints
+  /// with a quadtree). 0 (the default): cv::ORB's strongest corners of the whole frame.
+  float spread_cell_px = 0.f;
+  int spread_pool = 3;  ///< >= 1, the pool's size in `features`
 };
 
 /// Frame-to-frame descriptor matching.

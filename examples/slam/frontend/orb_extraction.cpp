@@ -1,5 +1,7 @@
 #include "frontend/orb_extraction.hpp"
 
+#include "frontend/keypoint_spread.hpp"
+
 #include <fmt/format.h>
 #include <hbos/error.hpp>
 
@@ -23,7 +25,23 @@ OrbExtractor::OrbExtractor(const ExtractionConfig& config, CameraModel camera)
                     config_.features, config_.levels, config_.scale_factor, config_.fast_threshold,
                     config_.min_fast_threshold, config_.min_depth_m, config_.max_depth_m));
   }
-  orb_ = cv::ORB::create(config_.features, config_.scale_factor, config_.levels,
+  if (!(config_.spread_cell_px >= 0.f && std::isfinite(config_.spread_cell_px)) ||
+      config_.spread_pool < 1) {
+    throw InvalidArgument(
+        fmt::format("ORB spread: cell {} px must be finite and >= 0 (0: off), pool {} must be >= 1",
+                    config_.spread_cell_px, config_.spread_pool));
+  }
+  if (config_.spread_cell_px > 0.f &&
+      static_cast<long>(config_.features) * config_.spread_pool > kMaxOrbFeatures) {
+    throw InvalidArgument(
+        fmt::format("ORB spread: a pool of {} x {} features = {} exceeds {}; lower --features or "
+                    "--orb-spread-pool",
+                    config_.spread_pool, config_.features,
+                    static_cast<long>(config_.features) * config_.spread_pool, kMaxOrbFeatures));
+  }
+  const bool spread = config_.spread_cell_px > 0.f;
+  orb_ = cv::ORB::create(spread ? config_.features * config_.spread_pool : config_.features,
+                         config_.scale_factor, config_.levels,
                          /*edgeThreshold=*/19, /*firstLevel=*/0, /*WTA_K=*/2, cv::ORB::HARRIS_SCORE,
                          /*patchSize=*/31, config_.fast_threshold);
 }
@@ -39,11 +57,23 @@ Features OrbExtractor::extract(const Frame& frame) {
     allowed = frame.mask == 0;
   }
   Features f;
-  orb_->setFastThreshold(config_.fast_threshold);
-  orb_->detectAndCompute(gray, allowed, f.keypoints, f.descriptors);
-  if (static_cast<int>(f.keypoints.size()) < config_.features) {
-    orb_->setFastThreshold(config_.min_fast_threshold);
+  if (config_.spread_cell_px > 0.f) {
+    // The pool, spread over the image, then the descriptors of the kept keypoints only.
+    orb_->setFastThreshold(config_.fast_threshold);
+    orb_->detect(gray, f.keypoints, allowed);
+    if (static_cast<int>(f.keypoints.size()) < config_.features) {
+      orb_->setFastThreshold(config_.min_fast_threshold);
+      orb_->detect(gray, f.keypoints, allowed);
+    }
+    f.keypoints = spread_keypoints(f.keypoints, config_.features, config_.spread_cell_px);
+    orb_->compute(gray, f.keypoints, f.descriptors);
+  } else {
+    orb_->setFastThreshold(config_.fast_threshold);
     orb_->detectAndCompute(gray, allowed, f.keypoints, f.descriptors);
+    if (static_cast<int>(f.keypoints.size()) < config_.features) {
+      orb_->setFastThreshold(config_.min_fast_threshold);
+      orb_->detectAndCompute(gray, allowed, f.keypoints, f.descriptors);
+    }
   }
 
   std::vector<cv::Point2f> pixels;

@@ -76,6 +76,8 @@ nlohmann::json summary_json(const RunResult& run, const Config& config,
                    {"rough_pose", to_string(config.rough_pose.method)},
                    {"ransac_threshold_px", config.rough_pose.ransac_threshold_px},
                    {"orb_features", config.extraction.features},
+                   {"orb_spread_cell_px", config.extraction.spread_cell_px},
+                   {"orb_spread_pool", config.extraction.spread_pool},
                    {"person_depth_m", config.scenario.depth_m},
                    {"person_speed_px_per_frame", config.scenario.speed_px_per_frame}};
   j["frames"] = t.frames;

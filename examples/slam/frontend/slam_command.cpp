@@ -131,6 +131,16 @@ void add_options(CLI::App& app, CommandOptions& o) {
   app.add_option("--features", c.extraction.features, "ORB features per frame (1 to 100000)")
       ->capture_default_str()
       ->check(CLI::Range(1, kMaxOrbFeatures));
+  app.add_option("--orb-spread-px", c.extraction.spread_cell_px,
+                 "spread the ORB features over cells of this side [px] per pyramid level, from a "
+                 "pool of --orb-spread-pool times --features (as ORB-SLAM2 spreads them); 0 = "
+                 "cv::ORB's strongest corners of the whole frame")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 10000.0));
+  app.add_option("--orb-spread-pool", c.extraction.spread_pool,
+                 "with --orb-spread-px: the pool detected, in multiples of --features (1 to 10)")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 10));
   app.add_option("--out", c.output.dir, "output folder")->capture_default_str();
   app.add_option("--figure-frame", c.output.figure_frame,
                  "frame drawn in matches.png / residual_histogram.png (-1: most person matches)")

@@ -19,6 +19,7 @@ target_sources(hbos_slam PRIVATE
   ${_hbos_frontend_dir}/shared_bias.cpp
   ${_hbos_frontend_dir}/mask_distance.cpp
   ${_hbos_frontend_dir}/mask_files.cpp
+  ${_hbos_frontend_dir}/keypoint_spread.cpp
   ${_hbos_frontend_dir}/orb_extraction.cpp
   ${_hbos_frontend_dir}/person_detector.cpp
   ${_hbos_frontend_dir}/person_mask.cpp
