@@ -102,18 +102,8 @@ std::vector<RowVerdict> row_verdicts(const std::vector<TableRow>& rows) {
     v.best_other_cm = best->ate_cm.mean;
     v.default_cm = def->ate_cm.mean;
     v.spread_cm = std::max(best->ate_cm.sd, def->ate_cm.sd);
-    using hbos::slam::Standing;
-    switch (hbos::slam::standing(v.default_cm, v.best_other_cm, v.spread_cm)) {
-      case Standing::best:
-        v.verdict = "best";
-        break;
-      case Standing::tied:
-        v.verdict = "tied";
-        break;
-      case Standing::behind:
-        v.verdict = "behind";
-        break;
-    }
+    v.verdict =
+        hbos::slam::to_string(hbos::slam::standing(v.default_cm, v.best_other_cm, v.spread_cm));
     verdicts.push_back(v);
   }
   return verdicts;

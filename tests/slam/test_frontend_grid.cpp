@@ -34,6 +34,7 @@ TEST_CASE("the default's standing: best at or below, tied within the spread, beh
           "[frontend][grid]") {
   using hbos::slam::Standing;
   using hbos::slam::standing;
+  using hbos::slam::to_string;
   CHECK(standing(1.0, 1.0, 0.0) == Standing::best);  // equal means: the default is not behind
   CHECK(standing(0.9, 1.0, 0.0) == Standing::best);
   CHECK(standing(1.25, 1.0, 0.25) == Standing::tied);  // a gap of exactly the spread ties
@@ -49,6 +50,10 @@ TEST_CASE("the default's standing: best at or below, tied within the spread, beh
     }
     CHECK(last == static_cast<int>(Standing::behind));
   }
+  CHECK(std::string(to_string(Standing::tied)) == "tied");
+  CHECK(std::string(to_string(Standing::behind)) == "behind");
+  CHECK(std::string(to_string(Standing::behind, "not met")) == "not met");
+  CHECK(std::string(to_string(Standing::best, "not met")) == "best");
 }
 
 TEST_CASE("the parallax residual: zero where the person moves with a static point's flow",

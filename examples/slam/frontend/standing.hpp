@@ -18,4 +18,17 @@ enum class Standing { best, tied, behind };
   return gap <= spread ? Standing::tied : Standing::behind;
 }
 
+/// The standing's word in a report; the variant grid's reports say "not met" for `behind`.
+[[nodiscard]] constexpr const char* to_string(Standing s, const char* behind = "behind") noexcept {
+  switch (s) {
+    case Standing::best:
+      return "best";
+    case Standing::tied:
+      return "tied";
+    case Standing::behind:
+      break;
+  }
+  return behind;
+}
+
 }  // namespace hbos::slam

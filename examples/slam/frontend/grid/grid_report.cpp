@@ -132,18 +132,7 @@ std::vector<GridVerdict> grid_verdicts(const GridResult& grid, const std::vector
       v.best_mean = b.mean;
       v.default_mean = d.mean;
       v.spread = std::max(b.sd, d.sd);
-      // The grid's reports have said "not met" where hbos-dynbench says "behind".
-      switch (standing(d.mean, b.mean, v.spread)) {
-        case Standing::best:
-          v.verdict = "best";
-          break;
-        case Standing::tied:
-          v.verdict = "tied";
-          break;
-        case Standing::behind:
-          v.verdict = "not met";
-          break;
-      }
+      v.verdict = to_string(standing(d.mean, b.mean, v.spread), "not met");
       const std::vector<double> dv = grid_per_variant(grid, mask, "default", ate);
       const std::vector<double> bv = grid_per_variant(grid, mask, best->screen, ate);
       std::vector<double> gaps;
