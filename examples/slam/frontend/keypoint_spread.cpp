@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <map>
-#include <numeric>
 #include <utility>
 
 namespace hbos::slam {
