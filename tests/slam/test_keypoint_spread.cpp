@@ -20,8 +20,7 @@ using hbos::slam::spread_keypoints;
 namespace {
 
 cv::KeyPoint corner(float x, float y, float response, int octave = 0) {
-  cv::KeyPoint k(x, y, 31.f, -1.f, response, octave);
-  return k;
+  return {x, y, 31.f, -1.f, response, octave};
 }
 
 std::map<int, int> per_level(const std::vector<cv::KeyPoint>& kps) {

@@ -17,28 +17,26 @@ std::vector<cv::KeyPoint> spread_keypoints(const std::vector<cv::KeyPoint>& pool
   for (std::size_t i = 0; i < pool.size(); ++i) by_level[pool[i].octave].push_back(i);
 
   // Each level's quota: its share of the pool, by largest remainder so they sum to `target`.
-  std::vector<std::pair<int, std::size_t>> quota;  // level, keypoints to keep
-  std::vector<std::pair<double, int>> remainder;
+  std::vector<std::pair<int, std::size_t>> quota;         // level, keypoints to keep
+  std::vector<std::pair<double, std::size_t>> remainder;  // fraction, index into `quota`
   std::size_t given = 0;
   for (const auto& [level, members] : by_level) {
     const double share = static_cast<double>(target) * static_cast<double>(members.size()) /
                          static_cast<double>(pool.size());
+    remainder.emplace_back(share - std::floor(share), quota.size());
     quota.emplace_back(level, static_cast<std::size_t>(std::floor(share)));
-    remainder.emplace_back(share - std::floor(share), level);
     given += quota.back().second;
   }
   std::stable_sort(remainder.begin(), remainder.end(),
                    [](const auto& a, const auto& b) { return a.first > b.first; });
   for (std::size_t k = 0; given < static_cast<std::size_t>(target) && k < remainder.size(); ++k) {
-    for (auto& q : quota) {
-      if (q.first == remainder[k].second) ++q.second;
-    }
+    ++quota[remainder[k].second].second;
     ++given;
   }
 
   std::vector<std::uint8_t> keep(pool.size(), 0);
   for (const auto& [level, count] : quota) {
-    std::vector<std::size_t> members = by_level[level];
+    std::vector<std::size_t>& members = by_level[level];
     // Strongest first within each cell, then by the round: (rank in cell, -response).
     std::stable_sort(members.begin(), members.end(), [&](std::size_t a, std::size_t b) {
       return pool[a].response > pool[b].response;

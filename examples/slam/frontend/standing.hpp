@@ -18,8 +18,8 @@ enum class Standing { best, tied, behind };
   return gap <= spread ? Standing::tied : Standing::behind;
 }
 
-/// The standing's word in a report; the variant grid's reports say "not met" for `behind`.
-[[nodiscard]] constexpr const char* to_string(Standing s, const char* behind = "behind") noexcept {
+/// The standing's word in a report.
+[[nodiscard]] constexpr const char* to_string(Standing s) noexcept {
   switch (s) {
     case Standing::best:
       return "best";
@@ -28,7 +28,7 @@ enum class Standing { best, tied, behind };
     case Standing::behind:
       break;
   }
-  return behind;
+  return "behind";
 }
 
 }  // namespace hbos::slam

@@ -132,7 +132,7 @@ std::vector<GridVerdict> grid_verdicts(const GridResult& grid, const std::vector
       v.best_mean = b.mean;
       v.default_mean = d.mean;
       v.spread = std::max(b.sd, d.sd);
-      v.verdict = to_string(standing(d.mean, b.mean, v.spread), "not met");
+      v.verdict = to_string(standing(d.mean, b.mean, v.spread));
       const std::vector<double> dv = grid_per_variant(grid, mask, "default", ate);
       const std::vector<double> bv = grid_per_variant(grid, mask, best->screen, ate);
       std::vector<double> gaps;

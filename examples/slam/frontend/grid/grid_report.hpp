@@ -44,7 +44,7 @@ struct GridVerdict {
   std::string best_screen;
   double best_mean = 0.0, default_mean = 0.0;
   double spread = 0.0;  ///< max(sd of the default, sd of the best)
-  std::string verdict;  ///< best (lower mean) | tied (gap <= spread) | not met
+  std::string verdict;  ///< frontend/standing.hpp: best | tied | behind ("not met" before stop 31)
   Spread paired_gap;    ///< default - best other screen, on each variant
   int default_lower = 0;
 };
