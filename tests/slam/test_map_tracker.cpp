@@ -183,19 +183,27 @@ TEST_CASE("new keyframe points: the near ones, then the room beyond them", "[map
     return std::count_if(points.begin(), points.end(),
                          [&](int k) { return depth[static_cast<std::size_t>(k)] > m; });
   };
-  slam::KeyframeConfig c;  // close 3 m, at least 100, 100 far
+  slam::KeyframeConfig c;  // close 3 m, at least 100, every far one
   std::vector<std::uint8_t> taken(depth.size(), 0);
   const std::vector<int> ours = slam::select_new_points(depth, taken, c);
-  CHECK(ours.size() == 250);
-  CHECK(farther_than(ours, 3.f) == 100);
-  CHECK(farther_than(ours, 3.8f) == 0);  // the nearest of the room first
+  CHECK(ours.size() == 450);  // every keypoint with depth
+  CHECK(farther_than(ours, 3.f) == 300);
+  CHECK(std::is_sorted(ours.begin(), ours.end(), [&](int a, int b) {
+    return depth[static_cast<std::size_t>(a)] < depth[static_cast<std::size_t>(b)];
+  }));
+  // A cap keeps the nearest of the room.
+  c.max_far_points = 100;
+  const std::vector<int> capped = slam::select_new_points(depth, taken, c);
+  CHECK(capped.size() == 250);
+  CHECK(farther_than(capped, 3.f) == 100);
+  CHECK(farther_than(capped, 3.8f) == 0);
   // ORB-SLAM2's rule makes every new point on the person.
-  c.min_far_points = 0;
+  c.max_far_points = 0;
   CHECK(farther_than(slam::select_new_points(depth, taken, c), 3.f) == 0);
   // Taken keypoints (they observe a map point) make none; with few near ones, at least
   // min_new_points are made.
   c = slam::KeyframeConfig{};
-  c.min_far_points = 0;
+  c.max_far_points = 0;
   std::fill(taken.begin(), taken.begin() + 140, std::uint8_t{1});
   const std::vector<int> few = slam::select_new_points(depth, taken, c);
   CHECK(few.size() == 100);

@@ -34,8 +34,7 @@ std::vector<int> select_new_points(const std::vector<float>& depth_m,
   std::size_t close = 0;
   while (close < fresh.size() && depth(fresh[close]) < c.close_depth_m) ++close;
   const auto at_most = [&](int n) { return std::min(fresh.size(), static_cast<std::size_t>(n)); };
-  const std::size_t far =
-      std::min(fresh.size() - close, static_cast<std::size_t>(c.min_far_points));
+  const std::size_t far = std::min(fresh.size() - close, at_most(c.max_far_points));
   fresh.resize(std::max(close + far, at_most(c.min_new_points)));
   return fresh;
 }

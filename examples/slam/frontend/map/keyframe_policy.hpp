@@ -41,10 +41,10 @@ struct KeyframeEvidence {
 
 /// The keypoints a new keyframe makes map points from (Tracking::CreateNewKeyFrame, RGB-D, with
 /// one departure): those with depth (`depth_m` > 0) and not `taken` (they observe a point),
-/// nearest first: all closer than close_depth_m, then min_far_points of the farther ones, and
-/// at least min_new_points in all. ORB-SLAM2 stops at the near ones (or the min_new_points
-/// nearest): a person the mask missed, nearer than the room, then makes every new point, and
-/// the map follows the person.
+/// nearest first: all closer than close_depth_m, then max_far_points of the farther ones (all, by
+/// default), and at least min_new_points in all. ORB-SLAM2 stops at the near ones (or the
+/// min_new_points nearest) and triangulates the far ones later in its local mapping thread, which
+/// this tracker does not have.
 [[nodiscard]] std::vector<int> select_new_points(const std::vector<float>& depth_m,
                                                  const std::vector<std::uint8_t>& taken,
                                                  const KeyframeConfig& config);

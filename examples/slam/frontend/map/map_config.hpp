@@ -5,6 +5,8 @@
 /// The stages shared with the frame tracker (ORB, rough pose, screen, refinement) keep their own
 /// groups in frontend/config.hpp.
 
+#include <limits>
+
 namespace hbos::slam {
 
 /// Projection matching (ORBmatcher::SearchByProjection).
@@ -40,11 +42,14 @@ struct KeyframeConfig {
   int tracked_close_min = 100;    ///< fewer tracked close points than this, and
   int untracked_close_min = 70;   ///< more close points without a map point: insert
   int min_new_points = 100;       ///< new points: all closer than close_depth_m, at least this many
-  /// New points beyond close_depth_m besides the near ones, nearest first (ORB-SLAM2: 0). A person
-  /// the mask misses is often the nearest thing in view: with 0 the new points of every keyframe
-  /// were the person's, and the map followed them (docs/results.md, "A missed person and the map
-  /// tracker's new points").
-  int min_far_points = 100;
+  /// New points beyond close_depth_m besides the near ones, nearest first; default: all of them.
+  /// ORB-SLAM2 makes none here and gets the room's far points later, when its local mapping
+  /// thread triangulates them between keyframes; this tracker has no such thread, so depth is
+  /// their only source. Without them a person the mask misses, nearer than the room, made every
+  /// new point, and the pose rested on near points alone, which pin rotation and sideways motion
+  /// poorly (docs/results.md, "A missed person and the map tracker's new points" and "The room's
+  /// far points").
+  int max_far_points = std::numeric_limits<int>::max();
   int init_min_features = 500;  ///< the first keyframe needs this many keypoints (ORB-SLAM2: 500)
 };
 
