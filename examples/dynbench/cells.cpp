@@ -111,6 +111,8 @@ nlohmann::json cell_settings(const BenchSettings& settings, const Cell& cell,
           {"history_consensus", c.rough_pose.history_consensus},
           {"history_consensus_rule", slam::kHistoryConsensusRule},
           {"orb_features", c.extraction.features},
+          {"huber_from_noise", c.refinement.huber_from_noise},
+          {"map_max_far_points", c.map.keyframes.max_far_points},
           {"hbos_version", fmt::format("{}.{}.{}", kVersionMajor, kVersionMinor, kVersionPatch)},
           {"sequence_fingerprint", sequence_fingerprint}};
 }

@@ -119,6 +119,10 @@ void add_options(CLI::App& app, CommandOptions& o) {
                  "weight of the past per screening in the outlier shares both trackers keep")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 1.0));
+  app.add_flag("--huber-from-noise,!--no-huber-from-noise", s.base.refinement.huber_from_noise,
+               "scale the pose refinement's Huber width (2.447 px/sigma, ORB-SLAM2's) by the "
+               "noise the refined matches have, never wider (docs/slam_demo.md)")
+      ->capture_default_str();
   app.add_option("--rounds", s.base.screen.rounds, "screen -> refine -> re-screen rounds")
       ->capture_default_str()
       ->check(CLI::Range(1, 20));

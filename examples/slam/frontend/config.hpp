@@ -177,6 +177,12 @@ struct LeverageGuardConfig {
 struct RefinementConfig {
   int max_iterations = 10;     ///< per call (ORB-SLAM2: 10 per round)
   double huber_delta = 2.447;  ///< [px/sigma] sqrt(5.991), ORB-SLAM2's Huber width
+  /// Scale the Huber width by the noise the refined matches have (frontend/pose_refiner.hpp):
+  /// huber_delta times their noise scale, clamped to [min_noise_scale, 1].
+  bool huber_from_noise = false;
+  /// [px/sigma] the narrowest noise scale: two keypoints rounded to the pixel grid differ by
+  /// 1/sqrt(6) per axis (the screen's NoiseGate::min_scale, for the same reason)
+  double min_noise_scale = 0.4082482904638631;
 };
 
 /// What is written, and where.

@@ -3,6 +3,14 @@
 /// Stage 5: pose refinement on the matches the screen kept: hbos's Gauss-Newton with a Huber loss
 /// on the whitened reprojection error (hbos/screening/pose_refinement.hpp), the cost ORB-SLAM2's
 /// PoseOptimization minimises. This file is the front end's only use of that header.
+///
+/// ORB-SLAM2's width, sqrt(5.991) = 2.447, assumes one pixel of noise per axis at octave 0. With
+/// `huber_from_noise` the width follows the noise the refined matches actually have: under the
+/// starting pose, their whitened residuals' median norm over sqrt(2 ln 2) (a 2-D Gaussian's
+/// median norm is sigma sqrt(2 ln 2)) gives the noise scale s, and the width is 2.447 s, with s
+/// clamped to [min_noise_scale, 1]. Matches the noise explains keep their full weight; those
+/// beyond 2.447 noise scales lose it as Huber's do beyond 2.447 pixels. Never wider than
+/// ORB-SLAM2's.
 
 #include "frontend/config.hpp"
 
@@ -29,6 +37,13 @@ class PoseRefiner {
                       Eigen::Isometry3d& T_cur_prev) const;
 
   [[nodiscard]] const hbos::PinholeCamerad& camera() const { return camera_; }
+
+  /// The Huber width [px/sigma] that refine() would use for these matches at pose `T_cur_prev`.
+  [[nodiscard]] double huber_width(const std::vector<Eigen::Vector3d>& points_prev,
+                                   const std::vector<Eigen::Vector2d>& observed,
+                                   const std::vector<double>& sigma,
+                                   const std::vector<std::uint8_t>& use,
+                                   const Eigen::Isometry3d& T_cur_prev) const;
 
  private:
   RefinementConfig config_;
