@@ -7,7 +7,7 @@ Each FOLDER holds <scenario>_s<seed>_<mask>/summary.json. The first setting is t
 row gives every setting's mean ATE RMSE [cm] and mean RPE [mm/frame] over the seeds every setting
 ran, and for each other setting the seeds on which it is lower than the baseline. Runs missing
 from some setting are listed, not skipped silently."""
-import csv, glob, json, os, re, sys
+import glob, json, os, re, sys
 
 out_md, out_csv, settings = sys.argv[1], sys.argv[2], [a.split('=', 1) for a in sys.argv[3:]]
 runs = {}  # (scenario, mask) -> name -> seed -> (ATE cm, RPE mm/frame)
@@ -46,13 +46,14 @@ if len(names) > 1:
     lines.append(f'{names[1]} against {base}: ATE lower on {lower_ate} of {total} runs, '
                  f'RPE lower on {lower_rpe} of {total}.')
 lines.append('Runs missing from some setting: ' + ('; '.join(missing) if missing else 'none') + '.')
-tmp = out_md + '.tmp'
-open(tmp, 'w').write('\n'.join(lines) + '\n')
-os.replace(tmp, out_md)
-tmp = out_csv + '.tmp'
-with open(tmp, 'w', newline='') as f:
-    w = csv.writer(f, lineterminator='\n')
-    w.writerow(['setting', 'scenario', 'mask', 'seed', 'ate_rmse_cm', 'rpe_trans_mean_mm'])
-    for r in sorted(rows_csv):
-        w.writerow(list(r[:4]) + [f'{r[4]:.4f}', f'{r[5]:.4f}'])
-os.replace(tmp, out_csv)
+def write_atomically(path, text):
+    """The table appears whole or not at all: written beside, then renamed."""
+    with open(path + '.tmp', 'w', newline='') as f:
+        f.write(text)
+    os.replace(path + '.tmp', path)
+
+
+write_atomically(out_md, '\n'.join(lines) + '\n')
+table = [['setting', 'scenario', 'mask', 'seed', 'ate_rmse_cm', 'rpe_trans_mean_mm']]
+table += [list(r[:4]) + [f'{r[4]:.4f}', f'{r[5]:.4f}'] for r in sorted(rows_csv)]
+write_atomically(out_csv, ''.join(','.join(str(v) for v in row) + '\n' for row in table))
