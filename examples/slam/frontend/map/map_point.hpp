@@ -37,9 +37,9 @@ struct MapPoint {
   float max_distance_m = 0.f;
   int reference_keyframe = 0;  ///< the keyframe that created it
   ScreeningHistory history;
-  bool culled = false;
+  bool culled = false;  ///< screened out again and again: never matched or used again
   /// Made from a keypoint on the composited person (the label): read by statistics only.
-  bool on_person = false;  ///< screened out again and again: never matched or used again
+  bool on_person = false;
 
   /// Octave ORB is expected to detect the point at from `distance_m` (MapPoint::PredictScale).
   [[nodiscard]] int predict_octave(double distance_m, float scale_factor, int levels) const;
