@@ -181,8 +181,8 @@ struct RefinementConfig {
   /// huber_delta times their noise scale, clamped to [min_noise_scale, 1].
   bool huber_from_noise = false;
   /// [px/sigma] the narrowest noise scale: two keypoints rounded to the pixel grid differ by
-  /// 1/sqrt(6) per axis (the screen's NoiseGate::min_scale, for the same reason)
-  double min_noise_scale = 0.4082482904638631;
+  /// 1/sqrt(6) per axis, the screen's own floor for the same reason
+  double min_noise_scale = hbos::NoiseGate{}.min_scale;
 };
 
 /// What is written, and where.

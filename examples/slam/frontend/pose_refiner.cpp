@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 #include <hbos/error.hpp>
+#include <hbos/screening/noise_scale.hpp>
 #include <hbos/screening/pose_refinement.hpp>
 
 #include <algorithm>
@@ -50,9 +51,7 @@ double PoseRefiner::huber_width(const std::vector<Eigen::Vector3d>& points_prev,
   }
   // Too few to measure a noise: ORB-SLAM2's width (refine_pose needs 3 matches to move at all).
   if (whitened.size() < kMinMatchesForNoise) return config_.huber_delta;
-  const auto middle = whitened.begin() + static_cast<std::ptrdiff_t>(whitened.size() / 2);
-  std::nth_element(whitened.begin(), middle, whitened.end());
-  const double scale = *middle / std::sqrt(2.0 * std::log(2.0));
+  const double scale = hbos::detail::rayleigh_scale(whitened, whitened.size(), 0.5);
   return config_.huber_delta * std::clamp(scale, config_.min_noise_scale, 1.0);
 }
 
