@@ -7,6 +7,7 @@
 #include "frontend/camera.hpp"
 #include "frontend/frame_source.hpp"
 #include "frontend/map/keyframe_policy.hpp"
+#include "frontend/map/local_mapping.hpp"
 #include "frontend/map/map.hpp"
 #include "frontend/map/map_run.hpp"
 #include "frontend/map/projection_matcher.hpp"
@@ -210,6 +211,93 @@ TEST_CASE("new keyframe points: the near ones, then the room beyond them", "[map
   CHECK(std::all_of(few.begin(), few.end(), [](int k) { return k >= 140 && k < 450; }));
 }
 
+TEST_CASE(
+    "local mapping: a keyframe's pose error is adjusted away, an outlier observation "
+    "erased with the covisibility it gave",
+    "[map][bundle]") {
+  std::mt19937 rng(5);
+  SyntheticScene s = make_scene(rng);
+  // A second keyframe 12 cm to the side, stored with a 1 cm, 0.5 deg error, observing every point.
+  Eigen::Isometry3d truth = Eigen::Isometry3d::Identity();
+  truth.translation() = Eigen::Vector3d(-0.12, 0.01, 0.02);
+  slam::KeyFrame kf;
+  kf.features = observe(s.points, s.descriptors, truth, rng, false);
+  kf.point_of.resize(kf.features.size());
+  for (std::size_t k = 0; k < kf.point_of.size(); ++k) kf.point_of[k] = static_cast<int>(k);
+  const int outlier_keypoint = 7;
+  kf.features.undistorted[outlier_keypoint] += Eigen::Vector2d(40.0, -25.0);
+  Eigen::Isometry3d stored = truth;
+  stored.translation() += Eigen::Vector3d(0.006, -0.005, 0.006);
+  stored.linear() = Eigen::AngleAxisd(0.5 * 3.14159265358979323846 / 180.0,
+                                      Eigen::Vector3d(0.3, 1.0, 0.2).normalized())
+                        .toRotationMatrix() *
+                    stored.linear();
+  kf.T_camera_world = stored;
+  const int id = s.map.add_keyframe(std::move(kf), {}, kCamera);
+  REQUIRE(s.map.keyframe(0).covisible.at(id) == 60);
+  // A third view, exact, so that the corrupted observation is the odd one out of three.
+  Eigen::Isometry3d third = Eigen::Isometry3d::Identity();
+  third.translation() = Eigen::Vector3d(0.1, -0.05, 0.0);
+  slam::KeyFrame kf3;
+  kf3.features = observe(s.points, s.descriptors, third, rng, false);
+  kf3.point_of.resize(kf3.features.size());
+  for (std::size_t k = 0; k < kf3.point_of.size(); ++k) kf3.point_of[k] = static_cast<int>(k);
+  kf3.T_camera_world = third;
+  const int id3 = s.map.add_keyframe(std::move(kf3), {}, kCamera);
+
+  const slam::HistoryConfig history;
+  SECTION("points the screen has not vouched for are left alone") {
+    const slam::LocalBundleReport r =
+        slam::adjust_local_map(s.map, id, kCamera, slam::LocalBundleConfig{}, history);
+    CHECK(r.points == 0);
+    CHECK(s.map.keyframe(id).T_camera_world.isApprox(stored));
+  }
+  SECTION("proven points: the pose comes back, the outlier goes") {
+    for (int p = 0; p < s.map.points_created(); ++p)
+      for (int k = 0; k < history.probation_kept; ++k) s.map.point(p).history.record(false, 0.8);
+    const slam::LocalBundleReport r =
+        slam::adjust_local_map(s.map, id, kCamera, slam::LocalBundleConfig{}, history);
+    CHECK(r.points == 60);
+    CHECK(r.moving_keyframes == 2);  // keyframe 0 holds the world frame
+    CHECK(r.outliers == 1);
+    const Eigen::Isometry3d& adjusted = s.map.keyframe(id).T_camera_world;
+    CHECK((adjusted.translation() - truth.translation()).norm() < 1e-3);
+    CHECK(Eigen::AngleAxisd(adjusted.linear() * truth.linear().transpose()).angle() < 1e-3);
+    CHECK(s.map.keyframe(0).T_camera_world.isApprox(Eigen::Isometry3d::Identity()));
+    // The outlier's observation is gone from both sides, and with it one shared point.
+    CHECK(s.map.keyframe(id).point_of[outlier_keypoint] == -1);
+    CHECK(s.map.point(outlier_keypoint).observations.size() == 2);
+    CHECK(s.map.keyframe(0).covisible.at(id) == 59);
+    CHECK(s.map.keyframe(id).covisible.at(0) == 59);
+    CHECK(s.map.keyframe(id3).covisible.at(id) == 59);
+    CHECK(s.map.keyframe(0).covisible.at(id3) == 60);
+    CHECK(s.map.alive(outlier_keypoint));
+  }
+  SECTION("an adjustment that would move a keyframe further than the limit is discarded") {
+    for (int p = 0; p < s.map.points_created(); ++p)
+      for (int k = 0; k < history.probation_kept; ++k) s.map.point(p).history.record(false, 0.8);
+    slam::LocalBundleConfig tight;
+    tight.max_shift_m = 0.002;  // the stored pose is 1 cm off: the fix is a larger move
+    const Eigen::Vector3d before = s.map.point(11).position_world;
+    const slam::LocalBundleReport r = slam::adjust_local_map(s.map, id, kCamera, tight, history);
+    CHECK(r.discarded);
+    CHECK(r.outliers == 0);
+    CHECK(s.map.keyframe(id).T_camera_world.isApprox(stored));
+    CHECK(s.map.point(11).position_world == before);
+    CHECK(s.map.keyframe(id).point_of[outlier_keypoint] == outlier_keypoint);
+  }
+  SECTION("a point whose every observation is erased is culled") {
+    for (const int k : {id, 0, id3}) s.map.erase_observation(k, 3);
+    CHECK_FALSE(s.map.alive(3));
+    CHECK(s.map.keyframe(0).covisible.at(id) == 59);
+    CHECK(s.map.keyframe(id).covisible.at(id3) == 59);
+    // The keyframe that made it is gone from its views: the reference passes to the oldest left.
+    s.map.erase_observation(0, 4);
+    CHECK(s.map.point(4).reference_keyframe == id);
+    CHECK(s.map.alive(4));
+  }
+}
+
 TEST_CASE("rotation histogram keeps the consistent orientations", "[map][matcher]") {
   std::vector<float> delta(40, 10.f);  // 40 matches rotated by ~10 deg
   for (std::size_t i = 0; i < delta.size(); ++i) delta[i] += 0.05f * static_cast<float>(i % 5);
@@ -227,7 +315,8 @@ TEST_CASE("projection matching finds each map point under the right pose only", 
   REQUIRE(s.map.live_points() == 60);
   // The camera moved 5 cm right and turned 2 degrees; each point has a decoy 3 px beside it.
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.linear() = Eigen::AngleAxisd(2.0 * M_PI / 180.0, Eigen::Vector3d::UnitY()).toRotationMatrix();
+  T.linear() = Eigen::AngleAxisd(2.0 * 3.14159265358979323846 / 180.0, Eigen::Vector3d::UnitY())
+                   .toRotationMatrix();
   T.translation() = Eigen::Vector3d(-0.05, 0.0, 0.0);
   const slam::Features current = observe(s.points, s.descriptors, T, rng, true);
   const slam::KeypointGrid grid(current, kBounds);

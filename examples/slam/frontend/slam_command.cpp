@@ -118,6 +118,16 @@ void add_options(CLI::App& app, CommandOptions& o) {
                  "weight of the past per screening in the outlier shares both trackers keep")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 1.0));
+  app.add_option("--huber-width", c.refinement.huber_delta,
+                 "the pose refinement's Huber width [px/sigma] (ORB-SLAM2's sqrt(5.991)); 0 = "
+                 "plain least squares")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 100.0));
+  app.add_flag("--local-ba,!--no-local-ba", c.map.local_bundle.enabled,
+               "map tracker: bundle-adjust the new keyframe, its covisible neighbours and the "
+               "points the screen vouches for whenever a keyframe is inserted; off by default, "
+               "measured in docs/map_tracking.md")
+      ->capture_default_str();
   app.add_flag("--huber-from-noise,!--no-huber-from-noise", c.refinement.huber_from_noise,
                "scale the pose refinement's Huber width (2.447 px/sigma, ORB-SLAM2's) by the "
                "noise the refined matches have, never wider (docs/slam_demo.md)")

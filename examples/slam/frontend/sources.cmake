@@ -33,6 +33,8 @@ target_sources(hbos_slam PRIVATE
 # The map tracker (--tracker map): one file per stage under map/.
 target_sources(hbos_slam PRIVATE
   ${_hbos_frontend_dir}/map/keyframe_policy.cpp
+  ${_hbos_frontend_dir}/map/local_bundle_adjustment.cpp
+  ${_hbos_frontend_dir}/map/local_mapping.cpp
   ${_hbos_frontend_dir}/map/map.cpp
   ${_hbos_frontend_dir}/map/map_point.cpp
   ${_hbos_frontend_dir}/map/map_report.cpp

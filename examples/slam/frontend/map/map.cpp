@@ -57,6 +57,45 @@ void Map::cull(int point_id) {
   ++culled_;
 }
 
+void Map::set_keyframe_pose(int keyframe_id, const Eigen::Isometry3d& T_camera_world) {
+  keyframes_[at(keyframe_id)].T_camera_world = T_camera_world;
+}
+
+void Map::set_point_position(int point_id, const Eigen::Vector3d& position_world) {
+  MapPoint& p = points_[at(point_id)];
+  p.position_world = position_world;
+  if (!p.observations.empty()) update_point(p);
+}
+
+void Map::erase_observation(int keyframe_id, int keypoint) {
+  KeyFrame& kf = keyframes_[at(keyframe_id)];
+  const int id = kf.point_of[static_cast<std::size_t>(keypoint)];
+  if (id < 0) return;
+  kf.point_of[static_cast<std::size_t>(keypoint)] = -1;
+  MapPoint& p = points_[at(id)];
+  const auto mine = std::find(p.observations.begin(), p.observations.end(),
+                              std::pair<int, int>(keyframe_id, keypoint));
+  if (mine == p.observations.end()) return;
+  p.observations.erase(mine);
+  // The covisibility this observation gave: one shared point less with every other observer.
+  for (const auto& [other, other_keypoint] : p.observations) {
+    static_cast<void>(other_keypoint);
+    if (other == keyframe_id) continue;
+    for (auto [a, b] : {std::pair(keyframe_id, other), std::pair(other, keyframe_id)}) {
+      auto& links = keyframes_[at(a)].covisible;
+      const auto link = links.find(b);
+      if (link != links.end() && --link->second <= 0) links.erase(link);
+    }
+  }
+  if (p.observations.empty()) {
+    cull(id);
+    return;
+  }
+  // The scale range is read at the reference keyframe's view: hand it to the oldest left.
+  if (p.reference_keyframe == keyframe_id) p.reference_keyframe = p.observations.front().first;
+  update_point(p);
+}
+
 void Map::update_point(MapPoint& p) const {
   // Mean viewing direction over the observations.
   Eigen::Vector3d normal = Eigen::Vector3d::Zero();

@@ -29,6 +29,13 @@ class Map {
 
   /// Marks the point culled: it is matched no more, and counted in culled_points().
   void cull(int point_id);
+  /// Moves a keyframe (local bundle adjustment); its points' views are not refreshed here.
+  void set_keyframe_pose(int keyframe_id, const Eigen::Isometry3d& T_camera_world);
+  /// Moves a point and refreshes its mean view and scale range.
+  void set_point_position(int point_id, const Eigen::Vector3d& position_world);
+  /// Forgets that `keyframe_id`'s keypoint observes its point (an outlier of the bundle
+  /// adjustment), with the covisibility it gave; a point left without observations is culled.
+  void erase_observation(int keyframe_id, int keypoint);
 
   /// The keyframes a frame whose matched points are `matched_points` is tracked against: those
   /// observing the most of them (first), then their best covisible neighbours, at most

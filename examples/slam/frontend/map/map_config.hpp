@@ -84,6 +84,31 @@ struct HistoryConfig {
   int min_proven_matches = 30;
 };
 
+/// Local bundle adjustment after each new keyframe (LocalMapping::Run's
+/// Optimizer::LocalBundleAdjustment, run in the tracking thread here; local_mapping.hpp).
+struct LocalBundleConfig {
+  /// Off by default: on 60 rendered runs it lowered the ATE on 31 and raised it on 24, two of
+  /// them to 3-5 cm (docs/map_tracking.md, "Local bundle adjustment").
+  bool enabled = false;
+  /// [keyframes] the new keyframe and its most covisible neighbours that move (ORB-SLAM2: every
+  /// covisible keyframe); the others observing their points are held fixed
+  int max_keyframes = 10;
+  int iterations = 10;  ///< Levenberg-Marquardt iterations per pass (ORB-SLAM2: 5, then 10)
+  /// [px m] the virtual stereo baseline times fx that turns depth into disparity (ORB-SLAM2's
+  /// Camera.bf for the TUM Kinects: 40)
+  double baseline_fx = 40.0;
+  /// [px] the disparity's noise: a Kinect's is about a tenth of a pixel whatever the keypoint's
+  /// level (with bf = 40, sigma_z = z^2 / 400: 2.5 mm at 1 m, 2.3 cm at 3 m, near Nguyen et al.
+  /// 2012's measurement). ORB-SLAM2 uses the keypoint's sigma, 1.2^octave px, which trusts depth
+  /// ten times less in standard deviation, and multi-view pixels then outweigh it: points were
+  /// moved off their depth and tracking got worse (docs/map_tracking.md). 0: ORB-SLAM2's.
+  double disparity_sigma_px = 0.1;
+  /// [m], [deg] an adjustment that would move a keyframe further is discarded (the tracker
+  /// placed it within millimetres; a larger move is a different minimum, not a better map)
+  double max_shift_m = 0.02;
+  double max_shift_deg = 1.0;
+};
+
 struct MapConfig {
   /// PnP RANSAC iterations of the map tracker's rough pose (the frame tracker's rough_pose group
   /// gives every other setting): the matches come from a constant-velocity search, so a smaller
@@ -95,6 +120,7 @@ struct MapConfig {
   KeyframeConfig keyframes;
   RelocalisationConfig relocalisation;
   HistoryConfig history;
+  LocalBundleConfig local_bundle;
 };
 
 }  // namespace hbos::slam

@@ -47,17 +47,18 @@ std::string map_frames_csv(const MapRun& r) {
   std::string csv =
       "frame,source,tracked,last_frame_matches,local_map_matches,keyframe,keyframes,live_points,"
       "culled_points,decode_us,mask_us,orb_us,tracking_us,rough_us,local_map_us,screen_us,"
-      "refine_us,map_us\n";
+      "refine_us,map_us,bundle_us,bundle_outliers\n";
   for (std::size_t i = 0; i < r.reports.size(); ++i) {
     const MapFrameReport& m = r.reports[i];
     const FrameStats& s = r.run.stats[i];
     csv += fmt::format(
         "{},{},{},{},{},{},{},{},{},{:.1f},{:.1f},{:.1f},{:.1f},{:.1f},{:.1f},{:.1f},{:.1f},"
-        "{:.1f}\n",
+        "{:.1f},{:.1f},{}\n",
         s.index, to_string(m.source), s.tracked ? 1 : 0, m.last_frame_matches, m.local_map_matches,
         m.keyframe_inserted ? 1 : 0, m.keyframes, m.live_points, m.culled_points,
         i < r.decode_us.size() ? r.decode_us[i] : 0.0, s.mask_us, m.extract_us, m.tracking_us,
-        m.rough_us, m.local_map_us, m.screen_us, m.refine_us, m.map_us);
+        m.rough_us, m.local_map_us, m.screen_us, m.refine_us, m.map_us, m.bundle_us,
+        m.bundle_outliers);
   }
   return csv;
 }

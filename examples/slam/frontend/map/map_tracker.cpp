@@ -1,5 +1,6 @@
 #include "frontend/map/map_tracker.hpp"
 
+#include "frontend/map/local_mapping.hpp"
 #include "frontend/mask_distance.hpp"
 
 #include <hbos/screening/residual_field.hpp>
@@ -414,10 +415,27 @@ void MapTracker::finish(const Frame& frame, Features current, const std::vector<
     if (point_of[k] >= 0) last_pixel_of_point_[point_of[k]] = current.keypoints[k].pt;
   }
   last_T_camera_world_ = T_camera_world;
-  if (need_keyframe(e, kc)) insert_keyframe(frame, std::move(current), point_of, T_camera_world);
+  if (need_keyframe(e, kc)) {
+    insert_keyframe(frame, std::move(current), point_of, T_camera_world);
+    adjust_around_new_keyframe();
+  }
   report_.keyframes = map_.keyframes();
   report_.live_points = map_.live_points();
   report_.culled_points = map_.culled_points();
+}
+
+void MapTracker::adjust_around_new_keyframe() {
+  if (!config_.map.local_bundle.enabled || map_.keyframes() < 2) return;
+  Stopwatch clock;
+  const LocalBundleReport r = adjust_local_map(map_, reference_keyframe_, refiner_.camera(),
+                                               config_.map.local_bundle, config_.map.history);
+  report_.bundle_outliers = r.discarded ? -1 : r.outliers;
+  // The next frame is predicted from this one, which is the keyframe just adjusted, and tracks
+  // the points the keyframe still observes.
+  const KeyFrame& adjusted = map_.keyframe(reference_keyframe_);
+  last_T_camera_world_ = adjusted.T_camera_world;
+  last_point_of_ = adjusted.point_of;
+  report_.bundle_us = clock.lap();
 }
 
 void MapTracker::lose(TrackResult& out) {

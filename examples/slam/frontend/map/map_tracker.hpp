@@ -49,6 +49,8 @@ struct MapFrameReport {
   double screen_us = 0.0;     ///< [us] the screen, refinement rounds excluded
   double refine_us = 0.0;     ///< [us] pose refinement (between rounds and final)
   double map_us = 0.0;        ///< [us] screening history, culling, keyframe insertion
+  double bundle_us = 0.0;     ///< [us] of which the local bundle adjustment of a new keyframe
+  int bundle_outliers = 0;    ///< observations the adjustment erased; -1: it was discarded
   TrackSource source = TrackSource::kLost;
   int last_frame_matches = 0;  ///< matches from lightweight tracking
   int local_map_matches = 0;   ///< matches added from the local map
@@ -96,6 +98,8 @@ class MapTracker {
   void lose(TrackResult& out);
   void insert_keyframe(const Frame& frame, Features current, const std::vector<int>& point_of,
                        const Eigen::Isometry3d& T_camera_world);
+  /// Local bundle adjustment around the keyframe just inserted (local_mapping.hpp).
+  void adjust_around_new_keyframe();
 
   Config config_;
   OrbExtractor extractor_;
