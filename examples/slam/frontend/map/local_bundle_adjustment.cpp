@@ -1,6 +1,7 @@
 #include "frontend/map/local_bundle_adjustment.hpp"
 
 #include <hbos/error.hpp>
+#include <hbos/screening/pose_refinement.hpp>
 
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
@@ -53,13 +54,6 @@ Eigen::Matrix3d skew(const Eigen::Vector3d& v) {
       v.z(), 0.0, -v.x(),   //
       -v.y(), v.x(), 0.0;
   return m;
-}
-
-Eigen::Matrix3d rotation_exp(const Eigen::Vector3d& omega) {
-  const double angle = omega.norm();
-  // AngleAxis needs a unit axis, which a zero step does not have; first order is exact enough.
-  if (angle < 1e-12) return Eigen::Matrix3d::Identity() + skew(omega);
-  return Eigen::AngleAxisd(angle, omega / angle).toRotationMatrix();
 }
 
 double huber_cost(double chi2, double width) {
@@ -387,7 +381,7 @@ class BundleSolver {
       if (f < 0) continue;
       const Vector6 delta = dc_.segment<6>(6 * static_cast<Eigen::Index>(f));
       Eigen::Isometry3d update = Eigen::Isometry3d::Identity();
-      update.linear() = rotation_exp(delta.head<3>());
+      update.linear() = hbos::detail::so3_exp<double>(delta.head<3>());
       update.translation() = delta.tail<3>();  // first order in the translation
       trial_poses_[i] = update * poses_[i];
     }

@@ -110,7 +110,8 @@ LocalBundleReport adjust_local_map(Map& map, int keyframe_id, const hbos::Pinhol
     if (keyframes[k].fixed) continue;
     const Eigen::Isometry3d shift =
         keyframes[k].T_camera_world * map.keyframe(keyframe_ids[k]).T_camera_world.inverse();
-    const double degrees = Eigen::AngleAxisd(shift.linear()).angle() * 180.0 / 3.14159265358979;
+    const double degrees =
+        Eigen::AngleAxisd(shift.linear()).angle() * 180.0 / static_cast<double>(EIGEN_PI);
     if (shift.translation().norm() > config.max_shift_m || degrees > config.max_shift_deg) {
       // Tracked keyframes are centimetres from the truth: an adjustment that moves one further
       // has found another minimum (keyframes a frame apart, points just proven), not a better
