@@ -113,6 +113,7 @@ nlohmann::json cell_settings(const BenchSettings& settings, const Cell& cell,
           {"orb_features", c.extraction.features},
           {"huber_from_noise", c.refinement.huber_from_noise},
           {"map_max_far_points", c.map.keyframes.max_far_points},
+          {"local_bundle_adjustment", c.map.local_bundle.enabled},
           {"hbos_version", fmt::format("{}.{}.{}", kVersionMajor, kVersionMinor, kVersionPatch)},
           {"sequence_fingerprint", sequence_fingerprint}};
 }

@@ -123,6 +123,11 @@ void add_options(CLI::App& app, CommandOptions& o) {
                "scale the pose refinement's Huber width (2.447 px/sigma, ORB-SLAM2's) by the "
                "noise the refined matches have, never wider (docs/slam_demo.md)")
       ->capture_default_str();
+  app.add_flag(
+         "--local-ba,!--no-local-ba", s.base.map.local_bundle.enabled,
+         "map tracker: bundle-adjust the new keyframe, its covisible neighbours and the "
+         "points the screen vouches for whenever a keyframe is inserted (docs/map_tracking.md)")
+      ->capture_default_str();
   app.add_option("--rounds", s.base.screen.rounds, "screen -> refine -> re-screen rounds")
       ->capture_default_str()
       ->check(CLI::Range(1, 20));

@@ -35,6 +35,15 @@ std::string run_label(const std::string& mask, const std::string& screen) {
   return screen == "none" ? "mask only" : "mask + " + screen;
 }
 
+/// The opt-in front-end settings a run used, named in the table's header (empty: none).
+std::string opt_ins(const slam::Config& c) {
+  std::string named;
+  if (c.refinement.huber_from_noise) named += ", Huber width from the matches' noise";
+  if (c.tracker == slam::TrackerKind::kMap && c.map.local_bundle.enabled)
+    named += ", local bundle adjustment";
+  return named;
+}
+
 }  // namespace
 
 Spread spread_of(const std::vector<double>& values) {
@@ -102,13 +111,13 @@ std::string table_markdown(const std::vector<TableRow>& rows, const BenchSetting
   const slam::Config& c = settings.base;
   std::string md = fmt::format(
       "Rendered sequences ({} frames each{}), seeds {}; tracker {}, camera {}, rough pose {} ({} "
-      "px), {} screening rounds. Each cell: mean ± sample standard deviation over the seeds. "
+      "px), {} screening rounds{}. Each cell: mean ± sample standard deviation over the seeds. "
       "Dynamic = a keypoint of the match on a rendered person or carried object (objects/ ids). "
       "Times: per-frame medians [ms], then the mean over seeds.\n\n",
       settings.frames > 0 ? fmt::format("{}", settings.frames) : std::string("all"),
       settings.frames > 0 ? "" : ", whole trajectories", seeds, slam::to_string(c.tracker),
       settings.camera, slam::to_string(c.rough_pose.method), c.rough_pose.ransac_threshold_px,
-      c.screen.rounds);
+      c.screen.rounds, opt_ins(c));
   md +=
       "| scenario | mask | screen | ATE RMSE [cm] | RPE [mm/frame] | dynamic matches kept [%] | "
       "static matches dropped [%] | frames tracked [%] | mask [ms] | motion est. [ms] | screen "
@@ -165,6 +174,7 @@ nlohmann::json table_json(const std::vector<TableRow>& rows,
                    {"tracker", slam::to_string(settings.base.tracker)},
                    {"rounds", settings.base.screen.rounds},
                    {"huber_from_noise", settings.base.refinement.huber_from_noise},
+                   {"local_bundle_adjustment", settings.base.map.local_bundle.enabled},
                    {"rough_pose", slam::to_string(settings.base.rough_pose.method)},
                    {"ransac_threshold_px", settings.base.rough_pose.ransac_threshold_px},
                    {"spread", "sample standard deviation over seeds (n - 1)"},

@@ -83,6 +83,21 @@ TEST_CASE("dynbench grid: cells, names and screens", "[dynbench]") {
   CHECK(s.frames == 0);
 }
 
+TEST_CASE("dynbench cells: the opt-in front-end settings are part of a cell's key", "[dynbench]") {
+  hbos::dynbench::BenchSettings s;
+  s.base.tracker = hbos::slam::TrackerKind::kMap;
+  const hbos::dynbench::Cell cell{"walking_xyz", 1, "eroded", "default"};
+  const auto plain = hbos::dynbench::cell_settings(s, cell, "fingerprint");
+  CHECK(plain.at("local_bundle_adjustment") == false);
+  CHECK(plain.at("huber_from_noise") == false);
+  s.base.map.local_bundle.enabled = true;
+  const auto adjusted = hbos::dynbench::cell_settings(s, cell, "fingerprint");
+  CHECK(adjusted.at("local_bundle_adjustment") == true);
+  // A finished cell is reused only when its stored settings equal these: a run with the
+  // adjustment never takes a cell made without it.
+  CHECK(adjusted != plain);
+}
+
 TEST_CASE("dynbench spread: mean and sample standard deviation, NaN left out", "[dynbench]") {
   const auto s = hbos::dynbench::spread_of({1.0, 3.0, std::nan("")});
   CHECK(s.n == 2);
