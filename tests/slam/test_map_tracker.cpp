@@ -490,3 +490,26 @@ TEST_CASE("hbos-slam --tracker map writes its outputs and the map report", "[map
   std::ostringstream out2, err2;
   CHECK(slam::run_slam_command(static_cast<int>(bad.size()), bad.data(), out2, err2) == 2);
 }
+
+TEST_CASE("hbos-slam --help names each on/off setting's default", "[map][command]") {
+  std::vector<const char*> argv = {"hbos-slam", "--help"};
+  std::ostringstream out, err;
+  REQUIRE(slam::run_slam_command(static_cast<int>(argv.size()), argv.data(), out, err) == 0);
+  const std::string help = out.str() + err.str();
+  // The defaults in config.hpp: the evidence and guards on, the opt-ins off.
+  const slam::Config defaults;
+  // The default the help gives for `--name,--no-name`: the first "(default: ...)" after it.
+  const auto default_of = [&](const std::string& name) {
+    const std::size_t at = help.find("--" + name + ",--no-" + name);
+    REQUIRE(at != std::string::npos);
+    const std::size_t on = help.find("(default: on)", at), off = help.find("(default: off)", at);
+    REQUIRE(std::min(on, off) != std::string::npos);
+    return on < off;
+  };
+  CHECK(default_of("mask-evidence") == defaults.screen.mask_evidence);
+  CHECK(default_of("leverage-guard") == defaults.guard.enabled);
+  CHECK(default_of("local-ba") == defaults.map.local_bundle.enabled);
+  CHECK(default_of("huber-from-noise") == defaults.refinement.huber_from_noise);
+  CHECK(defaults.screen.mask_evidence);
+  CHECK_FALSE(defaults.map.local_bundle.enabled);
+}
