@@ -1,7 +1,6 @@
 #include "dynbench/dynbench_command.hpp"
 
 #include "common/atomic_file.hpp"
-#include "common/cli_switch.hpp"
 #include "common/stop_on_signal.hpp"
 #include "dynbench/bench_figures.hpp"
 #include "dynbench/cell_run.hpp"
@@ -10,6 +9,7 @@
 #include "dynbench/screen_comparison.hpp"
 #include "dynbench/sequences.hpp"
 #include "dynbench/summary.hpp"
+#include "frontend/config_options.hpp"
 
 #include <fmt/format.h>
 #include <CLI/CLI.hpp>
@@ -100,37 +100,7 @@ void add_options(CLI::App& app, CommandOptions& o) {
   app.add_option("--jobs", s.jobs, "cells run at once (1 for the cleanest timings)")
       ->capture_default_str()
       ->check(CLI::Range(1, 64));
-  hbos::examples::add_switch(app, "mask-evidence", s.base.screen.mask_evidence,
-                             "pass each match's distance to the dynamic-object mask to the screen");
-  hbos::examples::add_switch(
-      app, "track-history", s.base.screen.track_history,
-      "frame tracker: pass each match chain's forgetting-weighted outlier share to "
-      "the screen (the default screen's persistence evidence)");
-  hbos::examples::add_switch(
-      app, "history-consensus", s.base.rough_pose.history_consensus,
-      "frame tracker: when RANSAC's consensus leans on tracks the screen mostly "
-      "rejected before, also try the consensus of the tracks it mostly kept and take "
-      "the better remembered one (needs --track-history; any screen)");
-  hbos::examples::add_switch(
-      app, "leverage-guard", s.base.guard.enabled,
-      "drop the survivors near the dynamic-object mask when they alone would decide a "
-      "direction of the pose (the mask neighbourhood's leverage guard; any screen)");
-  app.add_option("--history-forgetting", s.base.map.history.forgetting,
-                 "weight of the past per screening in the outlier shares both trackers keep")
-      ->capture_default_str()
-      ->check(CLI::Range(0.0, 1.0));
-  hbos::examples::add_switch(
-      app, "huber-from-noise", s.base.refinement.huber_from_noise,
-      "scale the pose refinement's Huber width (2.447 px/sigma, ORB-SLAM2's) by the "
-      "noise the refined matches have, never wider (docs/slam_demo.md)");
-  app.add_flag(
-         "--local-ba,!--no-local-ba", s.base.map.local_bundle.enabled,
-         "map tracker: bundle-adjust the new keyframe, its covisible neighbours and the "
-         "points the screen vouches for whenever a keyframe is inserted (docs/map_tracking.md)")
-      ->capture_default_str();
-  app.add_option("--rounds", s.base.screen.rounds, "screen -> refine -> re-screen rounds")
-      ->capture_default_str()
-      ->check(CLI::Range(1, 20));
+  slam::add_front_end_options(app, s.base);
   app.add_option("--rough-pose", o.rough_pose, "how the rough pose is found")
       ->capture_default_str()
       ->check(CLI::IsMember({"ransac", "constant-velocity"}));

@@ -185,6 +185,21 @@ TEST_CASE("dynbench: bad input exits 2 with the reason", "[dynbench]") {
   CHECK_THAT(err, Catch::Contains("no-such-renderer"));
 }
 
+TEST_CASE("dynbench --help names the front end's on/off settings and their defaults",
+          "[dynbench]") {
+  std::string out, err;
+  REQUIRE(dynbench({"--help"}, &out, &err) == hbos::dynbench::kDynbenchOk);
+  const std::string help = out + err;
+  // The options it shares with hbos-slam (frontend/config_options.hpp), defaults included.
+  const std::size_t local_ba = help.find("--local-ba,--no-local-ba");
+  REQUIRE(local_ba != std::string::npos);
+  CHECK(help.find("(default: off)", local_ba) < help.find("--huber-from-noise", local_ba));
+  const std::size_t evidence = help.find("--mask-evidence,--no-mask-evidence");
+  REQUIRE(evidence != std::string::npos);
+  CHECK(help.find("(default: on)", evidence) < help.find("--track-history", evidence));
+  CHECK_THAT(help, Catch::Contains("--rounds"));
+}
+
 TEST_CASE("dynbench end to end on a short rendered scenario", "[dynbench][render]") {
   const std::string renderer = hbos::dynbench::built_renderer();
   if (renderer.empty() || !fs::is_regular_file(renderer)) {

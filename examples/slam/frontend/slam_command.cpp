@@ -1,12 +1,12 @@
 #include "frontend/slam_command.hpp"
 
 #include "common/atomic_file.hpp"
-#include "common/cli_switch.hpp"
 #include "common/cli_validators.hpp"
 #include "common/stop_on_signal.hpp"
 #include "frontend/ablation.hpp"
 #include "frontend/camera.hpp"
 #include "frontend/config.hpp"
+#include "frontend/config_options.hpp"
 #include "frontend/dataset.hpp"
 #include "frontend/frame_source.hpp"
 #include "frontend/grid/grid_command.hpp"
@@ -98,44 +98,12 @@ void add_options(CLI::App& app, CommandOptions& o) {
          "--screen", [&c](const std::string& name) { c.screen.select(name); },
          "residual screen (default: " + c.screen.name + ")")
       ->check(CLI::IsMember(screen_strategy_names()));
-  hbos::examples::add_switch(
-      app, "mask-evidence", c.screen.mask_evidence,
-      "pass each match's distance to the dynamic-object mask to the screen (the "
-      "default screen's mask-neighbourhood evidence)");
-  hbos::examples::add_switch(
-      app, "track-history", c.screen.track_history,
-      "frame tracker: pass each match chain's forgetting-weighted outlier share to "
-      "the screen (the default screen's persistence evidence)");
-  hbos::examples::add_switch(
-      app, "history-consensus", c.rough_pose.history_consensus,
-      "frame tracker: when RANSAC's consensus leans on tracks the screen mostly "
-      "rejected before, also try the consensus of the tracks it mostly kept and take "
-      "the better remembered one (needs --track-history; any screen)");
-  hbos::examples::add_switch(
-      app, "leverage-guard", c.guard.enabled,
-      "drop the survivors near the dynamic-object mask when they alone would decide a "
-      "direction of the pose (the mask neighbourhood's leverage guard; any screen)");
-  app.add_option("--history-forgetting", c.map.history.forgetting,
-                 "weight of the past per screening in the outlier shares both trackers keep")
-      ->capture_default_str()
-      ->check(CLI::Range(0.0, 1.0));
+  add_front_end_options(app, c);
   app.add_option("--huber-width", c.refinement.huber_delta,
                  "the pose refinement's Huber width [px/sigma] (ORB-SLAM2's sqrt(5.991)); 0 = "
                  "plain least squares")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 100.0));
-  hbos::examples::add_switch(
-      app, "local-ba", c.map.local_bundle.enabled,
-      "map tracker: bundle-adjust the new keyframe, its covisible neighbours and the "
-      "points the screen vouches for whenever a keyframe is inserted; measured in "
-      "docs/map_tracking.md");
-  hbos::examples::add_switch(
-      app, "huber-from-noise", c.refinement.huber_from_noise,
-      "scale the pose refinement's Huber width (2.447 px/sigma, ORB-SLAM2's) by the "
-      "noise the refined matches have, never wider (docs/slam_demo.md)");
-  app.add_option("--rounds", c.screen.rounds, "screen -> refine -> re-screen rounds")
-      ->capture_default_str()
-      ->check(CLI::Range(1, 20));
   app.add_option("--rough-pose", o.rough_pose, "how the rough pose is found")
       ->capture_default_str()
       ->check(CLI::IsMember({"ransac", "constant-velocity"}));

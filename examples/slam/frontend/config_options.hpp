@@ -1,0 +1,47 @@
+#pragma once
+/// \file
+/// The front-end settings both commands take (hbos-slam and hbos-dynbench): the screen's
+/// evidence, the guards, the trackers' memory, the opt-ins and the screening rounds. Header-only:
+/// only the commands parse options, so the front end's library does not compile CLI11.
+
+#include "common/cli_switch.hpp"
+#include "frontend/config.hpp"
+
+#include <CLI/CLI.hpp>
+
+namespace hbos::slam {
+
+/// Registers the shared front-end options on `app`, bound to `c` (its values are the defaults
+/// the help shows).
+inline void add_front_end_options(CLI::App& app, Config& c) {
+  using hbos::examples::add_switch;
+  add_switch(app, "mask-evidence", c.screen.mask_evidence,
+             "pass each match's distance to the dynamic-object mask to the screen (the default "
+             "screen's mask-neighbourhood evidence)");
+  add_switch(app, "track-history", c.screen.track_history,
+             "frame tracker: pass each match chain's forgetting-weighted outlier share to the "
+             "screen (the default screen's persistence evidence)");
+  add_switch(app, "history-consensus", c.rough_pose.history_consensus,
+             "frame tracker: when RANSAC's consensus leans on tracks the screen mostly rejected "
+             "before, also try the consensus of the tracks it mostly kept and take the better "
+             "remembered one (needs --track-history; any screen)");
+  add_switch(app, "leverage-guard", c.guard.enabled,
+             "drop the survivors near the dynamic-object mask when they alone would decide a "
+             "direction of the pose (the mask neighbourhood's leverage guard; any screen)");
+  app.add_option("--history-forgetting", c.map.history.forgetting,
+                 "weight of the past per screening in the outlier shares both trackers keep")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1.0));
+  add_switch(app, "local-ba", c.map.local_bundle.enabled,
+             "map tracker: bundle-adjust the new keyframe, its covisible neighbours and the "
+             "points the screen vouches for whenever a keyframe is inserted "
+             "(docs/map_tracking.md)");
+  add_switch(app, "huber-from-noise", c.refinement.huber_from_noise,
+             "scale the pose refinement's Huber width (2.447 px/sigma, ORB-SLAM2's) by the noise "
+             "the refined matches have, never wider (docs/slam_demo.md)");
+  app.add_option("--rounds", c.screen.rounds, "screen -> refine -> re-screen rounds")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 20));
+}
+
+}  // namespace hbos::slam
