@@ -35,9 +35,12 @@ std::string run_label(const std::string& mask, const std::string& screen) {
   return screen == "none" ? "mask only" : "mask + " + screen;
 }
 
-/// The opt-in front-end settings a run used, named in the table's header (empty: none).
+/// The front-end settings a run used that differ from the defaults, named in the table's header
+/// (empty: none).
 std::string opt_ins(const slam::Config& c) {
   std::string named;
+  if (c.tracker == slam::TrackerKind::kMap && !c.screen.provisional_consensus)
+    named += ", new points without their own consensus";
   if (c.refinement.huber_from_noise) named += ", Huber width from the matches' noise";
   if (c.tracker == slam::TrackerKind::kMap && c.map.local_bundle.enabled)
     named += ", local bundle adjustment";
@@ -175,6 +178,7 @@ nlohmann::json table_json(const std::vector<TableRow>& rows,
                    {"rounds", settings.base.screen.rounds},
                    {"huber_from_noise", settings.base.refinement.huber_from_noise},
                    {"local_bundle_adjustment", settings.base.map.local_bundle.enabled},
+                   {"provisional_consensus", settings.base.screen.provisional_consensus},
                    {"rough_pose", slam::to_string(settings.base.rough_pose.method)},
                    {"ransac_threshold_px", settings.base.rough_pose.ransac_threshold_px},
                    {"spread", "sample standard deviation over seeds (n - 1)"},

@@ -3,8 +3,8 @@
 /// The library version: the single source of truth (CMake parses it from here).
 
 #define HBOS_VERSION_MAJOR 0
-#define HBOS_VERSION_MINOR 3
-#define HBOS_VERSION_PATCH 1
+#define HBOS_VERSION_MINOR 4
+#define HBOS_VERSION_PATCH 0
 
 namespace hbos {
 inline constexpr int kVersionMajor = HBOS_VERSION_MAJOR;

@@ -96,6 +96,10 @@ TEST_CASE("dynbench cells: the opt-in front-end settings are part of a cell's ke
   // A finished cell is reused only when its stored settings equal these: a run with the
   // adjustment never takes a cell made without it.
   CHECK(adjusted != plain);
+  // The new points' own consensus is on by default; a run without it keeps cells of its own.
+  CHECK(plain.at("provisional_consensus") == true);
+  s.base.screen.provisional_consensus = false;
+  CHECK(hbos::dynbench::cell_settings(s, cell, "fingerprint") != adjusted);
 }
 
 TEST_CASE("dynbench spread: mean and sample standard deviation, NaN left out", "[dynbench]") {
@@ -197,6 +201,9 @@ TEST_CASE("dynbench --help names the front end's on/off settings and their defau
   const std::size_t evidence = help.find("--mask-evidence,--no-mask-evidence");
   REQUIRE(evidence != std::string::npos);
   CHECK(help.find("(default: on)", evidence) < help.find("--track-history", evidence));
+  const std::size_t consensus = help.find("--provisional-consensus,--no-provisional-consensus");
+  REQUIRE(consensus != std::string::npos);
+  CHECK(help.find("(default: on)", consensus) < help.find("--history-consensus", consensus));
   CHECK_THAT(help, Catch::Contains("--rounds"));
 }
 

@@ -82,6 +82,9 @@ hbos::ScreenStrategy fuzz_strategy(FuzzInput& in) {
   if (in.flag()) s.history.floor = in.parameter(0.5);
   if (in.flag()) s.field.balance_cell_px = in.parameter(80.0);
   s.field.refit_on_static = in.flag();
+  // From two switches already drawn, so both paths are fuzzed and the seed corpus keeps the
+  // meaning of every byte.
+  s.coherence.flagged_consensus = s.mask.enabled != s.history.enabled;
   return s;
 }
 

@@ -510,6 +510,8 @@ TEST_CASE("hbos-slam --help names each on/off setting's default", "[map][command
   CHECK(default_of("leverage-guard") == defaults.guard.enabled);
   CHECK(default_of("local-ba") == defaults.map.local_bundle.enabled);
   CHECK(default_of("huber-from-noise") == defaults.refinement.huber_from_noise);
+  CHECK(default_of("provisional-consensus") == defaults.screen.provisional_consensus);
   CHECK(defaults.screen.mask_evidence);
+  CHECK(defaults.screen.provisional_consensus);
   CHECK_FALSE(defaults.map.local_bundle.enabled);
 }

@@ -414,3 +414,64 @@ TEMPLATE_TEST_CASE("fuzz finding: extreme matches never get a NaN score, whateve
     for (Eigen::Index i = m.size() - 4; i < m.size(); ++i) CHECK_FALSE(r.inlier(i));
   }
 }
+
+TEST_CASE(
+    "flagged consensus: a group of flagged new points moving together inside the gate vouches "
+    "for itself; the unflagged matches' evidence does not change",
+    "[screen_v2][coherence]") {
+  const double s = 0.4;
+  hbos::Matchesd m = static_matches(400, s, 41);
+  // The room's own new points: flagged, scattered, at the room's depth, with its noise.
+  std::mt19937 rng(42);
+  std::normal_distribution<double> noise(0.0, s);
+  std::uniform_real_distribution<double> x(0.0, 640.0), y(0.0, 480.0);
+  const Eigen::Index room_new = m.size();
+  for (int i = 0; i < 60; ++i) {
+    const Vec2 p(x(rng), y(rng));
+    m.add(p, p + Vec2(noise(rng), noise(rng)), 1.0, true);
+    m.set_depth(m.size() - 1, 2.0);
+  }
+  // A person's new points: flagged, 1.6 px/sigma off (inside chi^2's gate), nearer.
+  const Eigen::Index person = m.size();
+  std::uniform_real_distribution<double> px(400.0, 520.0), py(150.0, 350.0);
+  for (int i = 0; i < 80; ++i) {
+    const Vec2 p(px(rng), py(rng));
+    m.add(p, p + Vec2(1.6, 0.3) + Vec2(noise(rng), noise(rng)), 1.0, true);
+    m.set_depth(m.size() - 1, 0.9);
+  }
+  REQUIRE(m.flagged_count() == 140);
+
+  // Without it, no match of the fit set sits among the person's new points: no consensus,
+  // nothing fires, and the magnitude alone keeps them.
+  hbos::ReprojectionScreend plain;
+  const auto& r0 = plain.screen(m);
+  CHECK(rejected_share(r0, person, m.size()) < 0.2);
+  std::vector<double> unflagged_coherence(static_cast<std::size_t>(room_new));
+  for (Eigen::Index i = 0; i < room_new; ++i)
+    unflagged_coherence[static_cast<std::size_t>(i)] = r0.coherence(i);
+  const std::vector<std::uint8_t> unflagged_kept(r0.inliers().data(),
+                                                 r0.inliers().data() + room_new);
+
+  hbos::HbosScreen with;
+  with.coherence.flagged_consensus = true;
+  hbos::ReprojectionScreend consensus(with);
+  const auto& r1 = consensus.screen(m);
+  CHECK(rejected_share(r1, person, m.size()) > 0.8);
+  CHECK(rejected_share(r1, room_new, person) < 0.05);
+  CHECK(rejected_share(r1, 0, room_new) < 0.02);
+  // The fit set's consensus is its own: every unflagged match's evidence is unchanged.
+  for (Eigen::Index i = 0; i < room_new; ++i) {
+    CHECK(r1.coherence(i) == unflagged_coherence[static_cast<std::size_t>(i)]);
+    CHECK(r1.inlier(i) == (unflagged_kept[static_cast<std::size_t>(i)] != 0));
+  }
+
+  SECTION("without flags the option changes nothing") {
+    hbos::Matchesd unflagged = static_matches(400, s, 43);
+    add_object(unflagged, 80, Vec2(1.6, 0.3), s, 400.0, 150.0, 120.0, 200.0, 0.9, 44);
+    const auto& a = plain.screen(unflagged);
+    const std::vector<double> scores(a.scores().data(), a.scores().data() + a.size());
+    const auto& b = consensus.screen(unflagged);
+    for (Eigen::Index i = 0; i < b.size(); ++i)
+      CHECK(b.score(i) == scores[static_cast<std::size_t>(i)]);
+  }
+}

@@ -137,6 +137,12 @@ struct ScreenStageConfig {
   /// and in the rendered benchmark, at 1-3 points of statics (docs/slam_demo.md, "The match
   /// chains' memory").
   bool track_history = true;
+  /// The map tracker passes its new points on probation as flagged matches (kept out of the
+  /// screen's fit). With this, a flagged match's coherence is taken over its flagged neighbours
+  /// too (hbos::CoherenceEvidence::flagged_consensus): a group of new points on a person, each
+  /// inside the noise gate, is caught by moving together. The frame tracker flags nothing.
+  /// On: measured in docs/results.md ("New points vouch for each other", stop 35).
+  bool provisional_consensus = true;
 
   /// Selects a strategy of hbos::named_strategies() by name, or "none".
   /// \throws hbos::InvalidArgument naming the value and the choices.

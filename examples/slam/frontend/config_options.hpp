@@ -21,6 +21,9 @@ inline void add_front_end_options(CLI::App& app, Config& c) {
   add_switch(app, "track-history", c.screen.track_history,
              "frame tracker: pass each match chain's forgetting-weighted outlier share to the "
              "screen (the default screen's persistence evidence)");
+  add_switch(app, "provisional-consensus", c.screen.provisional_consensus,
+             "map tracker: the default screen takes a new point's coherence over the other new "
+             "points around it too, so a group of them moving together is caught");
   add_switch(app, "history-consensus", c.rough_pose.history_consensus,
              "frame tracker: when RANSAC's consensus leans on tracks the screen mostly rejected "
              "before, also try the consensus of the tracks it mostly kept and take the better "

@@ -12,6 +12,7 @@
 #include <limits>
 #include <optional>
 #include <utility>
+#include <variant>
 
 namespace hbos::slam {
 
@@ -66,7 +67,16 @@ ResidualScreen::ResidualScreen(const ScreenStageConfig& config)
         fmt::format("screen settings: rounds {} must be >= 1, min inliers {} >= 3", config_.rounds,
                     config_.min_inliers));
   }
-  if (config_.screen) impl_->screen.emplace(*config_.screen);  // validates
+  if (config_.screen) {
+    // This stage flags only points on probation (below), so their consensus among themselves
+    // is what flagged_consensus measures; the library's default leaves it off, where a flag can
+    // also mean "near a mask".
+    hbos::ScreenConfig screen = *config_.screen;
+    if (auto* s = std::get_if<hbos::HbosScreen>(&screen.strategy))
+      s->coherence.flagged_consensus =
+          s->coherence.flagged_consensus || config_.provisional_consensus;
+    impl_->screen.emplace(screen);  // validates
+  }
 }
 
 ResidualScreen::~ResidualScreen() = default;

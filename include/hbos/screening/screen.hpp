@@ -14,8 +14,10 @@
 ///  With the noise gate (the default):
 ///  3. s = the robust noise scale of m over F (noise_scale.hpp), at least the detector's own
 ///     (NoiseGate::min_scale), G = max(floor, scales s).
-///  4. Evidence per match: coherence l_i (neighbourhood.hpp), mask neighbourhood, history; each
-///     fires above its floor (mask and history only where m_i is above their `min_scales` s).
+///  4. Evidence per match: coherence l_i (neighbourhood.hpp; its consensus is over the fit set's
+///     neighbours inside the gate, and with CoherenceEvidence::flagged_consensus a flagged
+///     match's over the flagged ones too), mask neighbourhood, history; each fires above its
+///     floor (mask and history only where m_i is above their `min_scales` s).
 ///  5. B = the matches of F that look static (m <= G, no evidence fired); with
 ///     FieldFit::refit_on_static the field is refitted on B and steps 2-5 run once more.
 ///  6. One histogram per evidence feature (and the magnitude) fitted on B (histogram.hpp,
@@ -195,7 +197,7 @@ class ReprojectionScreen {
     detail::require(n >= 1 && n <= (Index{1} << 31), "reserve needs n in [1, 2^31], got ", n);
     const auto k = static_cast<std::size_t>(n);
     for (auto* v : {&result_.score_, &result_.magnitude_, &angle_, &fit_values_, &scratch_, &dx_,
-                    &dy_, &depth_, &coherence_, &proximity_, &history_})
+                    &dy_, &depth_, &coherence_, &flagged_coherence_, &proximity_, &history_})
       v->reserve(k);
     result_.contribution_.reserve(4 * k);
     result_.inlier_.reserve(k);
@@ -276,7 +278,7 @@ class ReprojectionScreen {
   ScreenResult<Scalar> result_;
   Histogram<Scalar> magnitude_hist_, angle_hist_, evidence_hist_;
   std::vector<Scalar> angle_, fit_values_, scratch_;
-  std::vector<Scalar> dx_, dy_, depth_, coherence_, proximity_, history_;
+  std::vector<Scalar> dx_, dy_, depth_, coherence_, flagged_coherence_, proximity_, history_;
   std::vector<std::uint8_t> angle_used_, fired_, looks_static_;
   std::vector<std::uint32_t> cell_counts_, cell_of_;
   std::vector<Scalar> cell_factor_;
@@ -523,6 +525,19 @@ void ReprojectionScreen<Scalar>::gate_and_evidence(const Matches<Scalar>& matche
     detail::coherence_evidence(scratch_.data(), fit_values_.data(), depth_.data(), un, gate_, s_eff,
                                s.coherence.cell_px, s.coherence.depth_ratio, s.coherence.z0, w,
                                coherence_.data());
+    if (s.coherence.flagged_consensus && fit_unflagged_only_) {
+      // The flagged matches' own consensus: every neighbour inside the gate supports it.
+      for (Index i = 0; i < n; ++i)
+        w.support[static_cast<std::size_t>(i)] =
+            r.magnitude_[static_cast<std::size_t>(i)] <= gate_ ? 1 : 0;
+      flagged_coherence_.resize(un);
+      detail::coherence_evidence(scratch_.data(), fit_values_.data(), depth_.data(), un, gate_,
+                                 s_eff, s.coherence.cell_px, s.coherence.depth_ratio,
+                                 s.coherence.z0, w, flagged_coherence_.data());
+      for (Index i = 0; i < n; ++i)
+        if (matches.on_dynamic_mask(i))
+          coherence_[static_cast<std::size_t>(i)] = flagged_coherence_[static_cast<std::size_t>(i)];
+    }
     // Bounded like the magnitude: it bounds the evidence histogram's bins.
     for (Scalar& l : coherence_) l = std::min(l, Scalar(64));
   }

@@ -100,6 +100,13 @@ struct CoherenceEvidence {
   double depth_ratio = 1.15;  ///< depth layers are this ratio thick, > 1
   double z0 = 3.0;            ///< significance (in standard errors) below which c_i is noise
   double floor = 2.0;         ///< evidence counts only above this log-likelihood ratio, >= 0
+  /// A flagged match (kept out of the fit under FlaggedPolicy::FitWithout) takes its consensus
+  /// over every neighbour inside the gate, flagged ones included, so a group of flagged matches
+  /// that moves together vouches for itself; an unflagged match's consensus stays over the fit
+  /// set's neighbours alone. For callers whose flag means "new, not yet trusted" (a map point on
+  /// probation). Off by default: where the flag means "on or near a mask", the mask's rim of
+  /// static matches then takes the person's consensus (docs/screening.md).
+  bool flagged_consensus = false;
 };
 
 /// The mask's neighbourhood: a match within `radius_px` of a dynamic-object mask whose
