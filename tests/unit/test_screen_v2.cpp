@@ -34,15 +34,15 @@ hbos::Matchesd static_matches(int n, double s, std::uint32_t seed) {
 }
 
 /// Adds `n` matches of an object in the box [x0, x0 + w] x [y0, y0 + h] whose residual is
-/// `offset` plus the same noise, at depth `depth`.
+/// `offset` plus the same noise, at depth `depth`, `flagged` or not.
 void add_object(hbos::Matchesd& m, int n, const Vec2& offset, double s, double x0, double y0,
-                double w, double h, double depth, std::uint32_t seed) {
+                double w, double h, double depth, std::uint32_t seed, bool flagged = false) {
   std::mt19937 rng(seed);
   std::normal_distribution<double> noise(0.0, s);
   std::uniform_real_distribution<double> x(x0, x0 + w), y(y0, y0 + h);
   for (int i = 0; i < n; ++i) {
     const Vec2 p(x(rng), y(rng));
-    m.add(p, p + offset + Vec2(noise(rng), noise(rng)));
+    m.add(p, p + offset + Vec2(noise(rng), noise(rng)), 1.0, flagged);
     m.set_depth(m.size() - 1, depth);
   }
 }
@@ -422,23 +422,11 @@ TEST_CASE(
   const double s = 0.4;
   hbos::Matchesd m = static_matches(400, s, 41);
   // The room's own new points: flagged, scattered, at the room's depth, with its noise.
-  std::mt19937 rng(42);
-  std::normal_distribution<double> noise(0.0, s);
-  std::uniform_real_distribution<double> x(0.0, 640.0), y(0.0, 480.0);
   const Eigen::Index room_new = m.size();
-  for (int i = 0; i < 60; ++i) {
-    const Vec2 p(x(rng), y(rng));
-    m.add(p, p + Vec2(noise(rng), noise(rng)), 1.0, true);
-    m.set_depth(m.size() - 1, 2.0);
-  }
+  add_object(m, 60, Vec2::Zero(), s, 0.0, 0.0, 640.0, 480.0, 2.0, 42, true);
   // A person's new points: flagged, 1.6 px/sigma off (inside chi^2's gate), nearer.
   const Eigen::Index person = m.size();
-  std::uniform_real_distribution<double> px(400.0, 520.0), py(150.0, 350.0);
-  for (int i = 0; i < 80; ++i) {
-    const Vec2 p(px(rng), py(rng));
-    m.add(p, p + Vec2(1.6, 0.3) + Vec2(noise(rng), noise(rng)), 1.0, true);
-    m.set_depth(m.size() - 1, 0.9);
-  }
+  add_object(m, 80, Vec2(1.6, 0.3), s, 400.0, 150.0, 120.0, 200.0, 0.9, 43, true);
   REQUIRE(m.flagged_count() == 140);
 
   // Without it, no match of the fit set sits among the person's new points: no consensus,
