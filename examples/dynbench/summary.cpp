@@ -37,7 +37,7 @@ std::string run_label(const std::string& mask, const std::string& screen) {
 
 /// The front-end settings a run used that differ from the defaults, named in the table's header
 /// (empty: none).
-std::string opt_ins(const slam::Config& c) {
+std::string non_default_settings(const slam::Config& c) {
   std::string named;
   if (c.tracker == slam::TrackerKind::kMap && !c.screen.provisional_consensus)
     named += ", new points without their own consensus";
@@ -120,7 +120,7 @@ std::string table_markdown(const std::vector<TableRow>& rows, const BenchSetting
       settings.frames > 0 ? fmt::format("{}", settings.frames) : std::string("all"),
       settings.frames > 0 ? "" : ", whole trajectories", seeds, slam::to_string(c.tracker),
       settings.camera, slam::to_string(c.rough_pose.method), c.rough_pose.ransac_threshold_px,
-      c.screen.rounds, opt_ins(c));
+      c.screen.rounds, non_default_settings(c));
   md +=
       "| scenario | mask | screen | ATE RMSE [cm] | RPE [mm/frame] | dynamic matches kept [%] | "
       "static matches dropped [%] | frames tracked [%] | mask [ms] | motion est. [ms] | screen "

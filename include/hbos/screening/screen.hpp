@@ -252,6 +252,11 @@ class ReprojectionScreen {
   /// Steps 3-4: the noise gate, then (unless `evidence` is false: a refit follows that makes
   /// this round's evidence moot) every match's evidence and whether it looks static.
   void gate_and_evidence(const Matches<Scalar>& matches, const HbosScreen& s, bool evidence = true);
+  /// CoherenceEvidence::flagged_consensus, after the last evidence round: each flagged match's
+  /// coherence taken again over every neighbour inside the gate, and its coherence bit of fired_.
+  /// Once per frame: a flagged match is never in the fit set, so never looks static, and an
+  /// earlier round's value of it decides nothing.
+  void flagged_consensus(const Matches<Scalar>& matches, const HbosScreen& s);
   [[nodiscard]] bool in_fit(const Matches<Scalar>& matches, Index i) const {
     return !fit_unflagged_only_ || !matches.on_dynamic_mask(i);
   }
@@ -525,19 +530,6 @@ void ReprojectionScreen<Scalar>::gate_and_evidence(const Matches<Scalar>& matche
     detail::coherence_evidence(scratch_.data(), fit_values_.data(), depth_.data(), un, gate_, s_eff,
                                s.coherence.cell_px, s.coherence.depth_ratio, s.coherence.z0, w,
                                coherence_.data());
-    if (s.coherence.flagged_consensus && fit_unflagged_only_) {
-      // The flagged matches' own consensus: every neighbour inside the gate supports it.
-      for (Index i = 0; i < n; ++i)
-        w.support[static_cast<std::size_t>(i)] =
-            r.magnitude_[static_cast<std::size_t>(i)] <= gate_ ? 1 : 0;
-      flagged_coherence_.resize(un);
-      detail::coherence_evidence(scratch_.data(), fit_values_.data(), depth_.data(), un, gate_,
-                                 s_eff, s.coherence.cell_px, s.coherence.depth_ratio,
-                                 s.coherence.z0, w, flagged_coherence_.data());
-      for (Index i = 0; i < n; ++i)
-        if (matches.on_dynamic_mask(i))
-          coherence_[static_cast<std::size_t>(i)] = flagged_coherence_[static_cast<std::size_t>(i)];
-    }
     // Bounded like the magnitude: it bounds the evidence histogram's bins.
     for (Scalar& l : coherence_) l = std::min(l, Scalar(64));
   }
@@ -566,6 +558,29 @@ void ReprojectionScreen<Scalar>::gate_and_evidence(const Matches<Scalar>& matche
     }
     fired_[k] = fired;
     looks_static_[k] = in_fit(matches, i) && r.magnitude_[k] <= gate_ && fired == 0 ? 1 : 0;
+  }
+}
+
+template <class Scalar>
+void ReprojectionScreen<Scalar>::flagged_consensus(const Matches<Scalar>& matches,
+                                                   const HbosScreen& s) {
+  const Index n = matches.size();
+  const auto un = static_cast<std::size_t>(n);
+  detail::CoherenceWork<Scalar>& w = coherence_work_;
+  // The last round's residuals (w.dx, w.dy), gate and scale, and the frame's grid (still valid:
+  // scratch_, fit_values_ and depth_ hold its pixels and depths, untouched since).
+  for (std::size_t k = 0; k < un; ++k) w.support[k] = result_.magnitude_[k] <= gate_ ? 1 : 0;
+  const Scalar s_eff = std::max(scale_, static_cast<Scalar>(s.gate.floor) * Scalar(1e-3));
+  flagged_coherence_.resize(un);
+  detail::coherence_evidence(scratch_.data(), fit_values_.data(), depth_.data(), un, gate_, s_eff,
+                             s.coherence.cell_px, s.coherence.depth_ratio, s.coherence.z0, w,
+                             flagged_coherence_.data());
+  const auto floor = static_cast<Scalar>(s.coherence.floor);
+  for (Index i = 0; i < n; ++i) {
+    if (!matches.on_dynamic_mask(i)) continue;
+    const auto k = static_cast<std::size_t>(i);
+    coherence_[k] = std::min(flagged_coherence_[k], Scalar(64));  // bounded as in the rounds
+    fired_[k] = static_cast<std::uint8_t>((fired_[k] & ~1U) | (coherence_[k] > floor ? 1U : 0U));
   }
 }
 
@@ -629,6 +644,9 @@ void ReprojectionScreen<Scalar>::run_gated(const Matches<Scalar>& matches, const
       gate_and_evidence(matches, s);
     }
   }
+
+  if (s.coherence.enabled && s.coherence.flagged_consensus && fit_unflagged_only_)
+    flagged_consensus(matches, s);
 
   // 6. Histograms of the evidence on the matches that look static; the fired features' sum.
   const auto t = static_cast<Scalar>(std::get<FixedThreshold>(s.threshold).value);
