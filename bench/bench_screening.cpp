@@ -33,17 +33,18 @@ const hbos_test::Scene& scene_of(int n) {
   return it->second;
 }
 
-void fill(const hbos_test::Scene& scene, hbos::Matchesd& m) {
+void fill(const hbos_test::Scene& scene, hbos::Matchesd& m, int flag_every = 0) {
   m.clear();
   for (Eigen::Index i = 0; i < scene.size(); ++i)
-    m.add(scene.predicted.col(i), scene.observed.col(i), scene.sigma(i), scene.on_dynamic_mask(i));
+    m.add(scene.predicted.col(i), scene.observed.col(i), scene.sigma(i),
+          scene.on_dynamic_mask(i) || (flag_every > 0 && i % flag_every == 0));
 }
 
-void run_single(benchmark::State& state, const hbos::ScreenStrategy& strategy) {
+void run_single(benchmark::State& state, const hbos::ScreenStrategy& strategy, int flag_every = 0) {
   const int n = static_cast<int>(state.range(0));
   const hbos_test::Scene& scene = scene_of(n);
   hbos::Matchesd matches;
-  fill(scene, matches);
+  fill(scene, matches, flag_every);
   hbos::ReprojectionScreend screen(strategy);
   screen.reserve(n);
   screen.screen(matches);  // warm-up
@@ -112,6 +113,16 @@ void BM_hbos_norefit(benchmark::State& s) {
   h.field.refit_on_static = false;
   run_single(s, h);
 }
+// The map tracker's frames: a quarter of the matches are new points on probation, flagged and
+// kept out of the fit (FlaggedPolicy::FitWithout, the default), spread over the image. With and
+// without the flagged matches' own consensus (CoherenceEvidence::flagged_consensus, which the
+// front end turns on for that tracker): what the option's second coherence pass costs.
+void BM_hbos_probation(benchmark::State& s) { run_single(s, hbos::HbosScreen{}, 4); }
+void BM_hbos_probation_consensus(benchmark::State& s) {
+  hbos::HbosScreen h;
+  h.coherence.flagged_consensus = true;
+  run_single(s, h, 4);
+}
 void BM_hbos_paper(benchmark::State& s) { run_single(s, hbos::HbosScreen::paper()); }
 void BM_chi2(benchmark::State& s) { run_single(s, hbos::ChiSquareGate{}); }
 void BM_fixed(benchmark::State& s) { run_single(s, hbos::FixedPixelGate{}); }
@@ -126,6 +137,8 @@ BENCHMARK(BM_fill_matches) HBOS_SIZES;
 BENCHMARK(BM_fill_matches_assign) HBOS_SIZES;
 BENCHMARK(BM_hbos_default) HBOS_SIZES;
 BENCHMARK(BM_hbos_norefit) HBOS_SIZES;
+BENCHMARK(BM_hbos_probation) HBOS_SIZES;
+BENCHMARK(BM_hbos_probation_consensus) HBOS_SIZES;
 BENCHMARK(BM_hbos_paper) HBOS_SIZES;
 BENCHMARK(BM_chi2) HBOS_SIZES;
 BENCHMARK(BM_fixed) HBOS_SIZES;

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <random>
 #include <string>
@@ -219,6 +220,59 @@ TEST_CASE("coherence: a neighbour clamped to the gate whatever the gate's square
   const std::vector<double> near = evidence(0.0, 1e200, w);
   CHECK(far[1] == near[1]);
   CHECK(far[2] == near[2]);
+}
+
+TEST_CASE("coherence: evaluating a subset gives those matches the bits of a full call",
+          "[reprojection]") {
+  // ReprojectionScreen's second consensus pass evaluates only the flagged matches; their
+  // evidence must be what a call over every match gives them, the other entries untouched, and
+  // every match (evaluated or not) must still count as its neighbours' support.
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> pixel(0.0, 640.0), residual(-3.0, 3.0), z(0.5, 6.0);
+  std::bernoulli_distribution coin(0.3);
+  for (const std::size_t n : {1U, 2U, 7U, 300U, 1001U}) {
+    for (const bool with_depth : {false, true}) {
+      INFO("n = " << n << ", depth " << with_depth);
+      std::vector<double> u(n), v(n), depth(n, std::nan(""));
+      hbos::detail::CoherenceWork<double> w;
+      w.dx.resize(n);
+      w.dy.resize(n);
+      w.support.resize(n);
+      std::vector<std::uint32_t> subset;
+      for (std::size_t i = 0; i < n; ++i) {
+        // Pixels packed into a third of the image, so most cells hold several matches.
+        u[i] = pixel(rng) / 3;
+        v[i] = pixel(rng) / 3;
+        if (with_depth) depth[i] = z(rng);
+        // The left part shares an offset, so its consensus is significant.
+        w.dx[i] = residual(rng) + (u[i] < 100.0 ? 2.0 : 0.0);
+        w.dy[i] = residual(rng);
+        w.support[i] = coin(rng) ? 0 : 1;
+        if (coin(rng)) subset.push_back(static_cast<std::uint32_t>(i));
+      }
+      std::vector<double> full(n);
+      hbos::detail::coherence_evidence(u.data(), v.data(), depth.data(), n, 2.447, 0.7, 40.0, 1.15,
+                                       3.0, w, full.data());
+      std::vector<double> part(n, -7.0);  // a value no evaluation gives
+      w.grid_valid = false;               // the subset call places the matches itself
+      hbos::detail::coherence_evidence(u.data(), v.data(), depth.data(), n, 2.447, 0.7, 40.0, 1.15,
+                                       3.0, w, part.data(), &subset);
+      std::size_t evaluated = 0, untouched = 0, nonzero = 0;
+      for (std::size_t i = 0; i < n; ++i) {
+        if (std::find(subset.begin(), subset.end(), i) != subset.end()) {
+          evaluated += std::memcmp(&part[i], &full[i], sizeof(double)) == 0 ? 1U : 0U;
+          nonzero += full[i] != 0.0 ? 1U : 0U;
+        } else {
+          untouched += part[i] == -7.0 ? 1U : 0U;
+        }
+      }
+      CHECK(evaluated == subset.size());
+      CHECK(untouched == n - subset.size());
+      // The statistic is exercised, not a column of zeros (the large frames only: a tiny one can
+      // have no neighbours).
+      if (n >= 300) CHECK(nonzero > subset.size() / 4);
+    }
+  }
 }
 
 TEST_CASE("coherence: a screen reused across frames places each frame's matches afresh",

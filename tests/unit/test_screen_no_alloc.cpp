@@ -25,7 +25,10 @@ TEST_CASE("screening allocates nothing after warm-up", "[reprojection][alloc]") 
   }
   hbos::HbosScreen with_angle = hbos::HbosScreen::magnitude_only();
   with_angle.angle = hbos::AngleFeature::AboveNoise;
+  hbos::HbosScreen flagged_consensus;  // the map tracker's setting: a second pass on the flagged
+  flagged_consensus.coherence.flagged_consensus = true;
   const std::vector<hbos::ScreenStrategy> strategies{hbos::HbosScreen{},
+                                                     flagged_consensus,
                                                      hbos::HbosScreen::paper(),
                                                      hbos::HbosScreen::magnitude_only(),
                                                      with_angle,

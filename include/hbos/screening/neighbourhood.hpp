@@ -37,6 +37,8 @@ struct CoherenceWork {
   /// per match: its depth layer; its residual clamped to the gate (support matches); its
   /// neighbours' sums (its own contribution taken out)
   std::vector<Scalar> layer, kx, ky, nsx, nsy, ncount;
+  /// per evaluated match of a subset call: its residual and its evidence, compacted
+  std::vector<Scalar> sub_dx, sub_dy, sub_llr;
   /// The grid of the last call (its size and `cell`), reused by the next call while `grid_valid`
   /// and its n, cell_px and depth_ratio are the same: the caller clears it whenever the pixels
   /// or depths may have changed. (The screen clears it per frame: its evidence rounds share the
@@ -99,15 +101,56 @@ void coherence_grid(const Scalar* u, const Scalar* v, const Scalar* depth, std::
   work.grid_valid = true;
 }
 
+/// The statistic of coherence_evidence over m matches, column-wise: from the neighbours' sums
+/// (nsx, nsy: overwritten) and counts and each match's own residual (dx, dy) into `out`. Eigen
+/// arrays divide and take square roots two values at a time, where one match at a time waited
+/// on each result in turn; every value sees the same operations in the same order whichever
+/// matches share its column, so its bits do not depend on them.
+template <class Scalar>
+void coherence_statistic(Scalar* nsx, Scalar* nsy, const Scalar* ncount, const Scalar* dx_in,
+                         const Scalar* dy_in, std::size_t m, Scalar scale, double z0, Scalar* llr) {
+  using Array = Eigen::Array<Scalar, Eigen::Dynamic, 1>;
+  const auto size = static_cast<Eigen::Index>(m);
+  Eigen::Map<Array> cx(nsx, size), cy(nsy, size);
+  const Eigen::Map<const Array> cnt(ncount, size);
+  const Eigen::Map<const Array> dx(dx_in, size), dy(dy_in, size);
+  Eigen::Map<Array> out(llr, size);
+  // Eigen's float square root is approximate (see screen.hpp); double's is the exact sqrtpd.
+  const auto sqrt = [](const auto& a) {
+    if constexpr (std::is_same_v<Scalar, double>) {
+      return a.sqrt();
+    } else {
+      return a.unaryExpr([](Scalar x) { return std::sqrt(x); });
+    }
+  };
+  cx /= cnt;  // the neighbours' mean residual c_i (NaN where cnt < 2: masked below)
+  cy /= cnt;
+  const Scalar inv_2s2 = Scalar(1) / (Scalar(2) * scale * scale);
+  const auto zz = static_cast<Scalar>(z0);
+  // z_i = |c_i| sqrt(cnt) / s, then the shrink 1 - z0 / z_i where z_i > z0 (kept in `out`).
+  out = sqrt(cx * cx + cy * cy) * sqrt(cnt) / scale;
+  out = (out > zz).select(Scalar(1) - zz / out, Scalar(0));
+  cx *= out;
+  cy *= out;
+  out = (cnt < Scalar(2))
+            .select(Scalar(0), (Scalar(2) * (dx * cx + dy * cy) - (cx * cx + cy * cy)) * inv_2s2);
+}
+
 /// Fills `llr` (size n) with the coherence evidence of every match. `u`, `v` are the predicted
 /// pixels, `depth` their depths (NaN = unknown; depth is used only when every match has one),
 /// `work.dx/dy/support` must be filled; `gate` clamps each neighbour's contribution [px/sigma];
 /// `scale` is the noise scale s (> 0). The cells are those of `work`'s grid while it is valid
 /// (see CoherenceWork::grid_valid).
+///
+/// With `subset` (indices into the n matches; empty: none), only those matches' evidence is
+/// evaluated and written to llr; the other entries of llr are left as they were. Every match
+/// still supports its neighbours as `work.support` says, and an evaluated match gets the same
+/// bits as a call over all n would give it.
 template <class Scalar>
 void coherence_evidence(const Scalar* u, const Scalar* v, const Scalar* depth, std::size_t n,
                         Scalar gate, Scalar scale, double cell_px, double depth_ratio, double z0,
-                        CoherenceWork<Scalar>& work, Scalar* llr) {
+                        CoherenceWork<Scalar>& work, Scalar* llr,
+                        const std::vector<std::uint32_t>* subset = nullptr) {
   if (n == 0) return;
   if (!work.grid_valid || work.grid_n != n || work.grid_cell_px != cell_px ||
       work.grid_depth_ratio != depth_ratio) {
@@ -184,55 +227,50 @@ void coherence_evidence(const Scalar* u, const Scalar* v, const Scalar* depth, s
   work.ty.resize(cells);
   work.tcount.assign(cells, Scalar(-1));
 
-  // The neighbours' sums of every match (a gather: scalar), then the statistic over whole
-  // columns (Eigen arrays: division and square root two values at a time, where one match at a
-  // time waited on each result in turn; the same operations in the same order, so the same bits).
-  work.nsx.resize(n);
-  work.nsy.resize(n);
-  work.ncount.resize(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    const std::uint32_t c = work.cell[i];
-    if (work.tcount[c] < Scalar(0)) {
-      const Sums sum = box(c);
-      work.tx[c] = sum.x;
-      work.ty[c] = sum.y;
-      work.tcount[c] = sum.count;
-    }
-    Scalar sx = work.tx[c], sy = work.ty[c], cnt = work.tcount[c];
-    if (work.support[i]) {  // a match is not its own neighbour
-      sx -= work.kx[i];
-      sy -= work.ky[i];
-      cnt -= Scalar(1);
-    }
-    work.nsx[i] = sx;
-    work.nsy[i] = sy;
-    work.ncount[i] = cnt;
-  }
-  using Array = Eigen::Array<Scalar, Eigen::Dynamic, 1>;
-  const auto size = static_cast<Eigen::Index>(n);
-  Eigen::Map<Array> cx(work.nsx.data(), size), cy(work.nsy.data(), size);
-  const Eigen::Map<const Array> cnt(work.ncount.data(), size);
-  const Eigen::Map<const Array> dx(work.dx.data(), size), dy(work.dy.data(), size);
-  Eigen::Map<Array> out(llr, size);
-  // Eigen's float square root is approximate (see screen.hpp); double's is the exact sqrtpd.
-  const auto sqrt = [](const auto& a) {
-    if constexpr (std::is_same_v<Scalar, double>) {
-      return a.sqrt();
-    } else {
-      return a.unaryExpr([](Scalar x) { return std::sqrt(x); });
+  // The neighbours' sums of every evaluated match (a gather: scalar), then the statistic over
+  // whole columns. `index_of(j)` is the j-th evaluated match; one loop per kind of call, so each
+  // is compiled with its body in place.
+  const auto gather = [&](std::size_t count, const auto& index_of) {
+    for (auto* a : {&work.nsx, &work.nsy, &work.ncount}) a->resize(count);
+    for (std::size_t j = 0; j < count; ++j) {
+      const std::size_t i = index_of(j);
+      const std::uint32_t c = work.cell[i];
+      if (work.tcount[c] < Scalar(0)) {
+        const Sums sum = box(c);
+        work.tx[c] = sum.x;
+        work.ty[c] = sum.y;
+        work.tcount[c] = sum.count;
+      }
+      Scalar sx = work.tx[c], sy = work.ty[c], cnt = work.tcount[c];
+      if (work.support[i]) {  // a match is not its own neighbour
+        sx -= work.kx[i];
+        sy -= work.ky[i];
+        cnt -= Scalar(1);
+      }
+      work.nsx[j] = sx;
+      work.nsy[j] = sy;
+      work.ncount[j] = cnt;
     }
   };
-  cx /= cnt;  // the neighbours' mean residual c_i (NaN where cnt < 2: masked below)
-  cy /= cnt;
-  const Scalar inv_2s2 = Scalar(1) / (Scalar(2) * scale * scale);
-  const auto zz = static_cast<Scalar>(z0);
-  // z_i = |c_i| sqrt(cnt) / s, then the shrink 1 - z0 / z_i where z_i > z0 (kept in `out`).
-  out = sqrt(cx * cx + cy * cy) * sqrt(cnt) / scale;
-  out = (out > zz).select(Scalar(1) - zz / out, Scalar(0));
-  cx *= out;
-  cy *= out;
-  out = (cnt < Scalar(2))
-            .select(Scalar(0), (Scalar(2) * (dx * cx + dy * cy) - (cx * cx + cy * cy)) * inv_2s2);
+  if (subset == nullptr) {
+    gather(n, [](std::size_t j) { return j; });
+    coherence_statistic(work.nsx.data(), work.nsy.data(), work.ncount.data(), work.dx.data(),
+                        work.dy.data(), n, scale, z0, llr);
+    return;
+  }
+  // Compacted: the evaluated matches' sums and residuals side by side, their evidence scattered
+  // back to their places.
+  const std::vector<std::uint32_t>& evaluated = *subset;
+  const std::size_t m = evaluated.size();
+  gather(m, [&](std::size_t j) { return static_cast<std::size_t>(evaluated[j]); });
+  for (auto* a : {&work.sub_dx, &work.sub_dy, &work.sub_llr}) a->resize(m);
+  for (std::size_t j = 0; j < m; ++j) {
+    work.sub_dx[j] = work.dx[evaluated[j]];
+    work.sub_dy[j] = work.dy[evaluated[j]];
+  }
+  coherence_statistic(work.nsx.data(), work.nsy.data(), work.ncount.data(), work.sub_dx.data(),
+                      work.sub_dy.data(), m, scale, z0, work.sub_llr.data());
+  for (std::size_t j = 0; j < m; ++j) llr[evaluated[j]] = work.sub_llr[j];
 }
 
 }  // namespace hbos::detail

@@ -197,15 +197,18 @@ class ReprojectionScreen {
     detail::require(n >= 1 && n <= (Index{1} << 31), "reserve needs n in [1, 2^31], got ", n);
     const auto k = static_cast<std::size_t>(n);
     for (auto* v : {&result_.score_, &result_.magnitude_, &angle_, &fit_values_, &scratch_, &dx_,
-                    &dy_, &depth_, &coherence_, &flagged_coherence_, &proximity_, &history_})
+                    &dy_, &depth_, &coherence_, &proximity_, &history_})
       v->reserve(k);
+    flagged_index_.reserve(k);
     result_.contribution_.reserve(4 * k);
     result_.inlier_.reserve(k);
     for (auto* v : {&angle_used_, &fired_, &looks_static_}) v->reserve(k);
     cell_of_.reserve(k);
     result_.coherence_.reserve(k);
     detail::CoherenceWork<Scalar>& w = coherence_work_;
-    for (auto* v : {&w.dx, &w.dy, &w.layer, &w.kx, &w.ky, &w.nsx, &w.nsy, &w.ncount}) v->reserve(k);
+    for (auto* v : {&w.dx, &w.dy, &w.layer, &w.kx, &w.ky, &w.nsx, &w.nsy, &w.ncount, &w.sub_dx,
+                    &w.sub_dy, &w.sub_llr})
+      v->reserve(k);
     w.support.reserve(k);
     w.cell.reserve(k);
     for (auto* v : {&w.sx, &w.sy, &w.count, &w.tx, &w.ty, &w.tcount})
@@ -283,9 +286,9 @@ class ReprojectionScreen {
   ScreenResult<Scalar> result_;
   Histogram<Scalar> magnitude_hist_, angle_hist_, evidence_hist_;
   std::vector<Scalar> angle_, fit_values_, scratch_;
-  std::vector<Scalar> dx_, dy_, depth_, coherence_, flagged_coherence_, proximity_, history_;
+  std::vector<Scalar> dx_, dy_, depth_, coherence_, proximity_, history_;
   std::vector<std::uint8_t> angle_used_, fired_, looks_static_;
-  std::vector<std::uint32_t> cell_counts_, cell_of_;
+  std::vector<std::uint32_t> cell_counts_, cell_of_, flagged_index_;
   std::vector<Scalar> cell_factor_;
   detail::FieldSamples<Scalar> samples_;
   detail::CoherenceWork<Scalar> coherence_work_;
@@ -570,16 +573,18 @@ void ReprojectionScreen<Scalar>::flagged_consensus(const Matches<Scalar>& matche
   // The last round's residuals (w.dx, w.dy), gate and scale, and the frame's grid (still valid:
   // scratch_, fit_values_ and depth_ hold its pixels and depths, untouched since).
   for (std::size_t k = 0; k < un; ++k) w.support[k] = result_.magnitude_[k] <= gate_ ? 1 : 0;
+  // Only the flagged matches' consensus is taken again (into their own entries of coherence_);
+  // every match still supports its neighbours.
+  flagged_index_.clear();
+  for (Index i = 0; i < n; ++i)
+    if (matches.on_dynamic_mask(i)) flagged_index_.push_back(static_cast<std::uint32_t>(i));
   const Scalar s_eff = std::max(scale_, static_cast<Scalar>(s.gate.floor) * Scalar(1e-3));
-  flagged_coherence_.resize(un);
   detail::coherence_evidence(scratch_.data(), fit_values_.data(), depth_.data(), un, gate_, s_eff,
                              s.coherence.cell_px, s.coherence.depth_ratio, s.coherence.z0, w,
-                             flagged_coherence_.data());
+                             coherence_.data(), &flagged_index_);
   const auto floor = static_cast<Scalar>(s.coherence.floor);
-  for (Index i = 0; i < n; ++i) {
-    if (!matches.on_dynamic_mask(i)) continue;
-    const auto k = static_cast<std::size_t>(i);
-    coherence_[k] = std::min(flagged_coherence_[k], Scalar(64));  // bounded as in the rounds
+  for (const std::uint32_t k : flagged_index_) {
+    coherence_[k] = std::min(coherence_[k], Scalar(64));  // bounded as in the rounds
     fired_[k] = static_cast<std::uint8_t>((fired_[k] & ~1U) | (coherence_[k] > floor ? 1U : 0U));
   }
 }
