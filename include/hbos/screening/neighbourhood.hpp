@@ -144,8 +144,9 @@ void coherence_statistic(Scalar* nsx, Scalar* nsy, const Scalar* ncount, const S
 ///
 /// With `subset` (indices into the n matches; empty: none), only those matches' evidence is
 /// evaluated and written to llr; the other entries of llr are left as they were. Every match
-/// still supports its neighbours as `work.support` says, and an evaluated match gets the same
-/// bits as a call over all n would give it.
+/// still supports its neighbours as `work.support` says, and an evaluated match goes through the
+/// same operations in the same order as in a call over all n (the same bits: a unit test checks
+/// them in the project's build).
 template <class Scalar>
 void coherence_evidence(const Scalar* u, const Scalar* v, const Scalar* depth, std::size_t n,
                         Scalar gate, Scalar scale, double cell_px, double depth_ratio, double z0,
