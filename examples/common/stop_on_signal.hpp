@@ -1,8 +1,10 @@
 #pragma once
-// Ctrl-C for long runs: while a StopOnSignal is alive, SIGINT and SIGTERM set a flag that the run
-// polls between units of work (frames, cells), so what is finished is kept and written; a second
-// signal ends the process as usual (the previous disposition is back), so a stuck run can still
-// be killed.
+// Ctrl-C for long runs: while a StopOnSignal is alive, SIGINT, SIGTERM and SIGHUP (a closed
+// terminal or ssh session) set a flag that the run polls between units of work (frames, cells),
+// so what is finished is kept and written. A second signal half a second or more after the first
+// ends the process as the signal does by default, so a stuck run can still be killed; one sooner
+// is taken as the same request (coreutils' `timeout` sends its signal twice: to the process, then
+// to its process group).
 
 #include <signal.h>
 
@@ -12,7 +14,7 @@ namespace hbos::examples {
 
 class StopOnSignal {
  public:
-  /// Clears the flag and installs the handler for SIGINT and SIGTERM.
+  /// Clears the flag and installs the handler for SIGINT, SIGTERM and SIGHUP.
   StopOnSignal();
   StopOnSignal(const StopOnSignal&) = delete;
   StopOnSignal& operator=(const StopOnSignal&) = delete;
@@ -29,6 +31,7 @@ class StopOnSignal {
  private:
   struct sigaction previous_int_ {};
   struct sigaction previous_term_ {};
+  struct sigaction previous_hup_ {};
 };
 
 }  // namespace hbos::examples

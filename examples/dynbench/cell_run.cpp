@@ -169,6 +169,7 @@ std::optional<CellMetrics> run_cell(const BenchSettings& settings, const Cell& c
   } else {
     run = slam::run_tracker(frame_at, n, config, camera, nullptr, stop);
   }
+  if (run.input_error) throw InvalidArgument(*run.input_error);
   if (run.interrupted || (stop != nullptr && *stop != 0)) return std::nullopt;
   run.evaluation = slam::evaluate_trajectory(*sequence.groundtruth,
                                              slam::estimate_of(run, "hbos-slam"), run.stamps);

@@ -1,5 +1,6 @@
 #include "dynbench/cells.hpp"
 
+#include "frontend/camera.hpp"
 #include "frontend/residual_screen.hpp"
 #include "frontend/rough_pose.hpp"
 
@@ -93,6 +94,14 @@ std::string sequence_dir(const BenchSettings& settings, const std::string& scena
 nlohmann::json cell_settings(const BenchSettings& settings, const Cell& cell,
                              const std::string& sequence_fingerprint) {
   const slam::Config& c = settings.base;
+  // The intrinsics themselves, not only the camera's name: a camera file edited between two runs
+  // must not let the second reuse cells the first computed with other numbers.
+  const slam::CameraModel camera = slam::load_camera(settings.camera);
+  const nlohmann::json intrinsics = {{"fx", camera.fx}, {"fy", camera.fy},
+                                     {"cx", camera.cx}, {"cy", camera.cy},
+                                     {"k1", camera.k1}, {"k2", camera.k2},
+                                     {"p1", camera.p1}, {"p2", camera.p2},
+                                     {"k3", camera.k3}, {"depth_factor", camera.depth_factor}};
   return {{"format", 1},
           {"scenario", cell.scenario},
           {"seed", cell.seed},
@@ -100,6 +109,7 @@ nlohmann::json cell_settings(const BenchSettings& settings, const Cell& cell,
           {"screen", cell.screen},
           {"frames", settings.frames},
           {"camera", settings.camera},
+          {"camera_model", intrinsics},
           {"tracker", slam::to_string(c.tracker)},
           {"rounds", c.screen.rounds},
           {"mask_evidence", c.screen.mask_evidence},

@@ -11,7 +11,7 @@ enum DynbenchExitCode : int {
   kDynbenchOk = 0,
   kDynbenchFailed = 1,         ///< rendering failed or a result file could not be written
   kDynbenchBadInput = 2,       ///< bad option, no renderer, a missing or misfit input file
-  kDynbenchInterrupted = 130,  ///< SIGINT/SIGTERM: the finished cells are kept for a re-run
+  kDynbenchInterrupted = 130,  ///< SIGINT/SIGTERM/SIGHUP: the finished cells are kept for a re-run
 };
 
 /// `hbos-dynbench [options]`: renders the scenarios (hbos-render) into a cache, runs the front

@@ -1,5 +1,6 @@
 #include "dynbench/sequences.hpp"
 
+#include "common/stop_on_signal.hpp"
 #include "frontend/dataset.hpp"
 
 #include <fmt/format.h>
@@ -117,6 +118,13 @@ std::string ensure_sequence(const BenchSettings& settings, const std::string& sc
   if (fs::exists(dir)) argv.emplace_back("--overwrite");
   const std::string log = dir + ".log";
   const int status = run_logged(argv, log);
+  if (status != 0 && examples::StopOnSignal::stopped()) {
+    // Ctrl-C reached the renderer too (the terminal signals the whole process group): not a
+    // failure. The renderer removes its temporary folder itself; a second Ctrl-C may not let it.
+    std::error_code ignored;
+    fs::remove_all(dir + ".tmp", ignored);
+    return {};
+  }
   if (status != 0 || !fs::is_directory(dir)) {
     std::string command;
     for (const std::string& a : argv) command += (command.empty() ? "" : " ") + a;

@@ -18,7 +18,8 @@ namespace hbos::dynbench {
 
 /// Renders `scenario` with `seed` into sequence_dir() unless it exists there (or
 /// settings.rerender). Runs `settings.renderer --scenario S --seed N --out DIR --frames F
-/// --quiet [--overwrite]`, its output in `<DIR>.log`. Returns the folder. Throws
+/// --quiet [--overwrite]`, its output in `<DIR>.log`. Returns the folder, or an empty string when
+/// a signal stopped the run (examples::StopOnSignal) and the renderer with it. Throws
 /// hbos::InvalidArgument when there is no renderer, and std::runtime_error naming the command
 /// and the log's last lines when it fails.
 std::string ensure_sequence(const BenchSettings& settings, const std::string& scenario,

@@ -10,6 +10,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "common/stop_on_signal.hpp"
 #include "render/sequence.hpp"
 #include "render/writer.hpp"
 
@@ -42,7 +43,9 @@ int main(int argc, char** argv) {
   app.add_option("--scenario", o.scenario, "scenario: " + names)->capture_default_str();
   app.add_option("--seed", o.seed, "seed (same scenario + seed = same bytes)")
       ->capture_default_str();
-  app.add_option("--out", out, "output folder (TUM format; written via <out>.tmp)")->required();
+  app.add_option("--out", out,
+                 "output folder (TUM format; written via <out>.tmp; Ctrl-C leaves neither)")
+      ->required();
   app.add_option("--frames", o.frames, "frames to render (0 = the whole trajectory)")
       ->capture_default_str();
   app.add_option("--people", o.people, "people in the scene, 1..3 (default: the scenario's)");
@@ -72,13 +75,19 @@ int main(int argc, char** argv) {
         }
       };
     }
-    const WriteStats s = write_sequence(renderer, out, overwrite, progress);
+    const hbos::examples::StopOnSignal stop_on_signal;
+    const WriteStats s =
+        write_sequence(renderer, out, overwrite, progress, hbos::examples::StopOnSignal::flag());
     std::printf("hbos-render: %s seed %llu: %d frames, %zu people -> %s\n", o.scenario.c_str(),
                 static_cast<unsigned long long>(o.seed), s.frames,
                 renderer.scenario().people.size(), out.c_str());
     std::printf("hbos-render: %.1f s, %.1f frames/s (render + sensor model %.1f frames/s)\n",
                 s.seconds, s.frames / s.seconds, s.frames / s.render_seconds);
     return 0;
+  } catch (const Interrupted& e) {
+    if (!quiet && isatty(fileno(stderr))) std::fputc('\n', stderr);  // below the progress bar
+    std::cerr << "hbos-render: " << e.what() << "\n";
+    return 130;
   } catch (const UsageError& e) {
     std::cerr << "hbos-render: error: " << e.what() << "\n";
     return 2;

@@ -46,6 +46,12 @@ int run(int argc, char** argv) {
 
   hbos::cases::CaseInputs inputs;
   inputs.sequence = hbos::slam::load_tum_sequence(fr1);
+  if (inputs.sequence.unpaired_rgb > 0) {
+    std::cerr << fmt::format(
+        "hbos-screening-cases: warning: {} of {} colour images in {}/rgb.txt have no depth image "
+        "within 0.02 s; they are skipped, so some pairs span a gap\n",
+        inputs.sequence.unpaired_rgb, inputs.sequence.unpaired_rgb + inputs.sequence.size(), fr1);
+  }
   inputs.camera = hbos::slam::camera_preset("tum1");
   inputs.people = hbos::cases::cut_people(fr3);
   const std::vector<CaseSpec> specs =

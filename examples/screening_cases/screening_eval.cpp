@@ -10,6 +10,7 @@
 #include <hbos/error.hpp>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -41,13 +42,52 @@ nlohmann::ordered_json read_manifest(const std::string& dir) {
   if (!m.contains("cases") || !m["cases"].is_array() || m["cases"].empty()) {
     throw hbos::InvalidArgument(fmt::format("manifest '{}' lists no cases", path));
   }
+  if (m.contains("format") && m["format"] != 1) {
+    throw hbos::InvalidArgument(
+        fmt::format("manifest '{}': format {} is not supported (1 is)", path, m["format"].dump()));
+  }
+  std::size_t index = 0;
   for (const auto& c : m["cases"]) {
-    for (const char* key : {"name", "dir", "rough_pose", "people", "mask"}) {
-      if (!c.contains(key)) {
-        throw hbos::InvalidArgument(
-            fmt::format("manifest '{}': a case has no field '{}'", path, key));
+    // Every field the tables read, with its type: a wrong one is named here, not by the JSON
+    // library's "type must be string" somewhere later.
+    const std::string which =
+        fmt::format("manifest '{}', case {}{}", path, index,
+                    c.is_object() && c.contains("name") && c["name"].is_string()
+                        ? " ('" + c["name"].get<std::string>() + "')"
+                        : std::string());
+    if (!c.is_object()) throw hbos::InvalidArgument(which + ": is not an object");
+    const auto field = [&](const char* key) -> const nlohmann::ordered_json& {
+      if (!c.contains(key))
+        throw hbos::InvalidArgument(fmt::format("{}: no field '{}'", which, key));
+      return c[key];
+    };
+    for (const char* key : {"name", "dir", "rough_pose", "mask"}) {
+      if (!field(key).is_string() || field(key).get<std::string>().empty()) {
+        throw hbos::InvalidArgument(fmt::format("{}: field '{}' must be a non-empty string, got {}",
+                                                which, key, field(key).dump()));
       }
     }
+    const std::string mask = c["mask"].get<std::string>();
+    if (mask != "none" && mask != "exact" && mask != "degraded") {
+      throw hbos::InvalidArgument(
+          fmt::format("{}: field 'mask' must be none, exact or degraded, got '{}'", which, mask));
+    }
+    const auto& people = field("people");
+    if (!people.is_array() ||
+        std::any_of(people.begin(), people.end(), [](const auto& p) { return !p.is_string(); })) {
+      throw hbos::InvalidArgument(fmt::format(
+          "{}: field 'people' must be an array of names, got {}", which, people.dump()));
+    }
+    if (c.contains("pairs") &&
+        (!c["pairs"].is_number_integer() || c["pairs"].get<long long>() < 1)) {
+      throw hbos::InvalidArgument(fmt::format(
+          "{}: field 'pairs' must be a positive integer, got {}", which, c["pairs"].dump()));
+    }
+    if (c.contains("seed") && !c["seed"].is_number_unsigned()) {
+      throw hbos::InvalidArgument(fmt::format(
+          "{}: field 'seed' must be a non-negative integer, got {}", which, c["seed"].dump()));
+    }
+    ++index;
   }
   return m;
 }
@@ -283,6 +323,14 @@ int run(int argc, char** argv) {
     const auto pose = hbos_test::parse_case_pose(c["rough_pose"].get<std::string>());
     const auto loaded = hbos_test::load_screening_case(
         (fs::path(dir) / c["dir"].get<std::string>()).string(), pose);
+    if (c.contains("pairs") &&
+        c["pairs"].get<long long>() != static_cast<long long>(loaded.pairs.size())) {
+      // A truncated pairs.csv would otherwise be measured as a smaller case.
+      throw hbos::InvalidArgument(
+          fmt::format("case '{}': the manifest lists {} pairs, {}/pairs.csv has {}",
+                      c["name"].get<std::string>(), c["pairs"].get<long long>(),
+                      (fs::path(dir) / c["dir"].get<std::string>()).string(), loaded.pairs.size()));
+    }
     CaseMetrics m = hbos::cases::measure_case(loaded, strategies);
     hbos::cases::measure_equal_loss(loaded, strategies, m);
     m.name = c["name"].get<std::string>();

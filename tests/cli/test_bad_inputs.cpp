@@ -53,6 +53,8 @@ const std::string kScore = HBOS_SCORE_EXE;
 const std::string kEval = HBOS_EVAL_EXE;
 const std::string kSlam = HBOS_SLAM_EXE;
 const fs::path kSlamData = HBOS_SLAM_DATA_DIR;
+const std::string kScreeningEval = HBOS_SCREENING_EVAL_EXE;
+const fs::path kScreeningCases = HBOS_SCREENING_CASES_DIR;
 
 /// `frames` frames of the embedded fr1/xyz sequence copied into `dir`/seq (with ground truth).
 fs::path copy_sequence(const fs::path& dir, int frames) {
@@ -505,15 +507,68 @@ TEST_CASE("bad input: a black frame in hbos-slam is reported as not tracked",
   CHECK_THAT(r.out, Contains("6 of 8 frames tracked"));
 }
 
-TEST_CASE("bad input: Ctrl-C in hbos-slam keeps the frames done so far",
+TEST_CASE("bad input: an image that cannot be decoded mid-run keeps the frames before it",
+          "[bad_inputs][hbos_slam]") {
+  const fs::path dir = scratch("slam_undecodable");
+  const fs::path seq = copy_sequence(dir, 8);
+  // Frame 5 (index 5): a JPEG start and end marker with noise between them, which
+  // the up-front checks (existence, end marker) pass and only decoding finds out.
+  const fs::path image = first_image(seq, "rgb.txt", 5);
+  const std::string bytes = slurp(image);
+  std::string noise(5000, '\0');
+  for (std::size_t k = 0; k < noise.size(); ++k) noise[k] = static_cast<char>((k * 7919) % 251);
+  std::ofstream(image, std::ios::binary | std::ios::trunc)
+      << bytes.substr(0, 2) << noise << bytes.substr(bytes.size() - 2);
+  const fs::path out = dir / "out";
+  const Run r = run(dir, kSlam,
+                    {"--dataset", seq.string(), "--quiet", "--out", out.string(), "--scenario",
+                     "static", "--mask", "none"});
+  CHECK(r.exit_code == 2);
+  CHECK_THAT(r.err, Contains("cannot be decoded") && Contains("stopped at frame 6 of 8") &&
+                        Contains("writing the frames before it"));
+  std::ifstream in(out / "trajectory.txt");
+  int poses = 0;
+  std::string line;
+  while (std::getline(in, line)) poses += !line.empty() && line[0] != '#' ? 1 : 0;
+  CHECK(poses == 5);
+}
+
+TEST_CASE("bad input: colour images without a depth image are skipped with a warning",
+          "[bad_inputs][hbos_slam]") {
+  const fs::path dir = scratch("slam_unpaired");
+  const fs::path seq = copy_sequence(dir, 8);
+  // Drop the 3rd and 4th depth maps: the 3rd colour image is then 49 ms from the nearest one.
+  std::ifstream in(seq / "depth.txt");
+  std::string text, line;
+  int data = 0;
+  while (std::getline(in, line)) {
+    const bool listed = !line.empty() && line[0] != '#';
+    data += listed ? 1 : 0;
+    if (!listed || (data != 3 && data != 4)) text += line + "\n";
+  }
+  in.close();
+  std::ofstream(seq / "depth.txt") << text;
+  const Run r = run(dir, kSlam,
+                    {"--dataset", seq.string(), "--quiet", "--out", (dir / "out").string(),
+                     "--scenario", "static", "--mask", "none"});
+  CHECK(r.exit_code == 0);
+  CHECK_THAT(r.err, Contains("warning: 1 of 8 colour images in") &&
+                        Contains("have no depth image within 0.02 s; they are skipped"));
+  CHECK_THAT(r.out, Contains("7 of 7 frames tracked"));
+}
+
+TEST_CASE("bad input: Ctrl-C or a closed terminal in hbos-slam keeps the frames done so far",
           "[bad_inputs][hbos_slam][signal]") {
-  const fs::path dir = scratch("slam_sigint");
+  // SIGHUP is what a long run gets when its terminal or ssh session closes.
+  const int sig = GENERATE(SIGINT, SIGHUP);
+  const fs::path dir = scratch("slam_signal_" + std::to_string(sig));
   const fs::path out = dir / "out";
   const pid_t child = ::fork();
   REQUIRE(child >= 0);
   if (child == 0) {
     std::signal(SIGINT, SIG_DFL);
     std::signal(SIGTERM, SIG_DFL);
+    std::signal(SIGHUP, SIG_DFL);
     std::freopen((dir / "stdout").c_str(), "w", stdout);
     std::freopen((dir / "stderr").c_str(), "w", stderr);
     ::execl(kSlam.c_str(), kSlam.c_str(), "--out", out.c_str(), "--scenario", "static", "--mask",
@@ -527,10 +582,10 @@ TEST_CASE("bad input: Ctrl-C in hbos-slam keeps the frames done so far",
     started = slurp(dir / "stderr").find("frame    3/") != std::string::npos;
     if (!started) std::this_thread::sleep_for(std::chrono::milliseconds(5));
   }
-  ::kill(child, SIGINT);
+  ::kill(child, sig);
   int status = 0;
   REQUIRE(::waitpid(child, &status, 0) == child);
-  INFO(slurp(dir / "stderr"));
+  INFO("signal " << sig << ": " << slurp(dir / "stderr"));
   REQUIRE(started);
   REQUIRE(WIFEXITED(status));
   CHECK(WEXITSTATUS(status) == 130);
@@ -545,4 +600,66 @@ TEST_CASE("bad input: Ctrl-C in hbos-slam keeps the frames done so far",
   for (const auto& entry : fs::directory_iterator(out)) {
     CHECK(entry.path().filename().string().find(".tmp") == std::string::npos);
   }
+}
+
+// ---- hbos-screening-eval: the manifest ----------------------------------------------------------
+
+namespace {
+
+// A one-case folder: the first `pairs` pairs of the fixture's static scene, and a manifest whose
+// case is `case_json`.
+fs::path small_cases(const fs::path& dir, const std::string& case_json, int pairs = 4) {
+  fs::create_directories(dir / "static");
+  std::ifstream in(kScreeningCases / "static" / "pairs.csv");
+  std::ofstream table(dir / "static" / "pairs.csv");
+  std::string line;
+  for (int k = 0; k <= pairs && std::getline(in, line); ++k) table << line << "\n";
+  for (int k = 0; k < pairs; ++k) {
+    char name[32];
+    std::snprintf(name, sizeof name, "pair_%02d.csv", k);
+    fs::copy_file(kScreeningCases / "static" / name, dir / "static" / name);
+  }
+  std::ofstream(dir / "cases.json") << "{\"format\": 1, \"cases\": [" << case_json << "]}\n";
+  return dir;
+}
+
+}  // namespace
+
+TEST_CASE("bad input: hbos-screening-eval names the manifest's case and field",
+          "[bad_inputs][screening_eval]") {
+  const std::string good =
+      R"("name": "x", "dir": "static", "people": [], "speed": "static", "mask": "none", )"
+      R"("seed": 0, "pairs": 4)";
+  struct Bad {
+    std::string json, message;
+  };
+  const std::vector<Bad> cases = {
+      {"{" + good + R"(, "rough_pose": 7})",
+       "case 0 ('x'): field 'rough_pose' must be a non-empty string, got 7"},
+      {R"({"name": null, "dir": "static", "people": [], "mask": "none", "rough_pose": "ransac"})",
+       "case 0: field 'name' must be a non-empty string, got null"},
+      {R"({"name": "x", "dir": "static", "people": "A", "mask": "none", "rough_pose": "ransac"})",
+       "field 'people' must be an array of names, got \"A\""},
+      {R"({"name": "x", "dir": "static", "people": [], "mask": "banana", "rough_pose": "ransac"})",
+       "field 'mask' must be none, exact or degraded, got 'banana'"},
+      {R"({"name": "x", "dir": "static", "people": [], "mask": "none", "rough_pose": "ransac", "seed": "a"})",
+       "field 'seed' must be a non-negative integer"},
+      {R"({"name": "x", "dir": "static", "people": [], "mask": "none", "rough_pose": "ransac", "pairs": 99})",
+       "the manifest lists 99 pairs"},
+  };
+  int k = 0;
+  for (const Bad& b : cases) {
+    const fs::path dir = small_cases(scratch("screening_eval_" + std::to_string(k++)), b.json);
+    const Run r = run(dir, kScreeningEval, {dir.string(), "--markdown", (dir / "out.md").string()});
+    INFO(b.json);
+    CHECK(r.exit_code == 2);
+    CHECK_THAT(r.err, Contains(b.message));
+    CHECK_FALSE(fs::exists(dir / "out.md"));
+  }
+  // The same folder with a well-formed case runs.
+  const fs::path dir =
+      small_cases(scratch("screening_eval_good"), "{" + good + R"(, "rough_pose": "ransac"})");
+  const Run r = run(dir, kScreeningEval, {dir.string(), "--markdown", (dir / "out.md").string()});
+  CHECK(r.exit_code == 0);
+  CHECK(fs::exists(dir / "out.md"));
 }

@@ -102,6 +102,29 @@ TEST_CASE("dynbench cells: the opt-in front-end settings are part of a cell's ke
   CHECK(hbos::dynbench::cell_settings(s, cell, "fingerprint") != adjusted);
 }
 
+TEST_CASE("dynbench cells: a camera file's numbers, not only its name, are part of a cell's key",
+          "[dynbench]") {
+  const fs::path dir = fs::temp_directory_path() / "hbos_dynbench_camera_key";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const fs::path camera = dir / "camera.yaml";
+  const auto write_camera = [&](double fx) {
+    std::ofstream(camera) << "fx: " << fx << "\nfy: 539.2\ncx: 320.1\ncy: 247.6\n";
+  };
+  hbos::dynbench::BenchSettings s;
+  s.camera = camera.string();
+  const hbos::dynbench::Cell cell{"walking_xyz", 1, "eroded", "default"};
+  write_camera(535.4);
+  const auto before = hbos::dynbench::cell_settings(s, cell, "fingerprint");
+  CHECK(before.at("camera_model").at("fx") == 535.4);
+  // The same file name with other intrinsics: a finished cell of the first must not be reused.
+  write_camera(300.0);
+  const auto after = hbos::dynbench::cell_settings(s, cell, "fingerprint");
+  CHECK(after.at("camera") == before.at("camera"));
+  CHECK(after != before);
+  fs::remove_all(dir);
+}
+
 TEST_CASE("dynbench spread: mean and sample standard deviation, NaN left out", "[dynbench]") {
   const auto s = hbos::dynbench::spread_of({1.0, 3.0, std::nan("")});
   CHECK(s.n == 2);

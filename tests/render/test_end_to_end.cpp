@@ -1,6 +1,7 @@
 // A short scenario renders end to end into a TUM folder; written twice it is the same bytes.
 #include <catch2/catch.hpp>
 
+#include <csignal>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -132,4 +133,60 @@ TEST_CASE("the same scenario and seed write the same bytes, file for file") {
   // 6 frames x (rgb, depth, objects, 8 masks) + 5 index files.
   CHECK(files == 6 * 11 + 5);
   for (const auto& p : outs) fs::remove_all(p);
+}
+
+TEST_CASE("overwriting replaces only a previous output, never other files or the current folder") {
+  SequenceOptions o;
+  o.scenario = "walking_static";
+  o.frames = 2;
+  o.seed = 1;
+  SequenceRenderer r(o);
+  const fs::path dir = scratch("overwrite_guard");
+  fs::create_directories(dir);
+  // A folder of the user's own files: kept, whatever --overwrite says.
+  const fs::path mine = dir / "mine";
+  fs::create_directories(mine);
+  std::ofstream(mine / "notes.txt") << "keep\n";
+  CHECK_THROWS_WITH(write_sequence(r, mine, true),
+                    Catch::Contains("holds files hbos-render did not write"));
+  CHECK(slurp(mine / "notes.txt") == "keep\n");
+  // A file: not replaced by a folder.
+  const fs::path file = dir / "file.txt";
+  std::ofstream(file) << "keep\n";
+  CHECK_THROWS_WITH(write_sequence(r, file, true), Catch::Contains("not a folder"));
+  CHECK(slurp(file) == "keep\n");
+  // Paths that name no folder of their own.
+  for (const fs::path& p : {fs::path(""), fs::path("."), fs::path(".."), fs::path("/")})
+    CHECK_THROWS_WITH(write_sequence(r, p, true), Catch::Contains("names no folder of its own"));
+  // A stale <out>.tmp holding other files is not deleted either.
+  const fs::path out = dir / "seq";
+  fs::create_directories(dir / "seq.tmp");
+  std::ofstream(dir / "seq.tmp" / "notes.txt") << "keep\n";
+  CHECK_THROWS_WITH(write_sequence(r, out, false), Catch::Contains("move it away"));
+  CHECK(slurp(dir / "seq.tmp" / "notes.txt") == "keep\n");
+  fs::remove_all(dir / "seq.tmp");
+  // A previous output is replaced.
+  write_sequence(r, out, false);
+  const WriteStats again = write_sequence(r, out, true);
+  CHECK(again.frames == 2);
+  CHECK(fs::exists(out / "scenario.json"));
+  fs::remove_all(dir);
+}
+
+TEST_CASE("a stop request between frames leaves no output and no temporary folder") {
+  SequenceOptions o;
+  o.scenario = "walking_static";
+  o.frames = 5;
+  o.seed = 1;
+  SequenceRenderer r(o);
+  const fs::path out = scratch("interrupted");
+  volatile std::sig_atomic_t stop = 0;
+  // Ctrl-C arrives while the third frame is written.
+  const auto progress = [&](int done, int) {
+    if (done == 2) stop = 1;
+  };
+  CHECK_THROWS_WITH(write_sequence(r, out, false, progress, &stop),
+                    Catch::Contains("interrupted after 2 of 5 frames"));
+  CHECK_FALSE(fs::exists(out));
+  CHECK_FALSE(fs::exists(out.string() + ".tmp"));
 }

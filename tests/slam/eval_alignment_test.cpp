@@ -8,6 +8,7 @@
 #include <Eigen/Geometry>
 #include <Eigen/LU>
 
+#include <cmath>
 #include <random>
 
 using Catch::Matchers::Contains;
@@ -143,6 +144,14 @@ TEST_CASE("alignment rejects unusable point sets", "[eval][alignment]") {
   CHECK_THROWS_WITH(align_similarity(bad, three), Contains("finite"));
   const Eigen::Matrix3Xd same = Eigen::Vector3d(1, 2, 3).replicate(1, 4);
   CHECK_THROWS_WITH(align_similarity(same, Eigen::Matrix3Xd::Random(3, 4)),
+                    Contains("all estimate points coincide"));
+  // Coinciding but for rounding (a constant position written out and read back) is coinciding:
+  // the fit gave a scale of 1e-28 and an RMSE of 0.
+  Eigen::Matrix3Xd nearly = Eigen::Vector3d(1.38, 0.6185, 1.6972).replicate(1, 4);
+  nearly(0, 2) = std::nextafter(nearly(0, 2), 2.0);
+  CHECK_THROWS_WITH(align_similarity(Eigen::Matrix3Xd::Random(3, 4), nearly),
+                    Contains("all ground-truth points coincide"));
+  CHECK_THROWS_WITH(align_similarity(nearly, Eigen::Matrix3Xd::Random(3, 4)),
                     Contains("all estimate points coincide"));
   // Two points fix everything but the rotation about their line, which does not change the
   // residual: the scripts accept 2 pairs, so do we.

@@ -219,7 +219,11 @@ TEST_CASE("RPE scale factor, overlap check and parameter checks", "[eval][rpe]")
   RpeParams bad_scale;
   bad_scale.est_scale = -1.0;
   CHECK_THROWS_WITH(compute_rpe(gt, gt, bad_scale), Contains("est_scale"));
-  // A delta longer than the sequence leaves no pair.
-  CHECK_THROWS_WITH(compute_rpe(gt, gt, delta(10.0, RpeDeltaUnit::kSeconds)),
-                    Contains("only 0 pose pairs"));
+  // A delta longer than the sequence leaves no pair; far longer (1e16 s), the sums rounded to one
+  // number and every pose was paired with the first, exit 0.
+  for (const double d : {10.0, 1e16})
+    CHECK_THROWS_WITH(compute_rpe(gt, gt, delta(d, RpeDeltaUnit::kSeconds)),
+                      Contains("exceeds the whole span of"));
+  CHECK_THROWS_WITH(compute_rpe(gt, gt, delta(1e18, RpeDeltaUnit::kFrames)),
+                    Contains("exceeds the whole span of"));
 }

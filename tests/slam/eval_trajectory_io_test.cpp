@@ -210,4 +210,12 @@ TEST_CASE("read_frame_stamps reads the first column of rgb.txt", "[eval][io]") {
   }
   CHECK_THROWS_WITH(hbos::slam::read_frame_stamps(dir.file("bad.txt")),
                     Contains("bad.txt:2: frame stamp is not a finite number: 'rgb/2.png'"));
+  // A frame listed twice would count twice in the share of frames tracked.
+  {
+    std::ofstream out(dir.file("twice.txt"));
+    out << "# timestamp filename\n2.5 b.png\n1.0 a.png\n2.5 c.png\n";
+  }
+  CHECK_THROWS_WITH(
+      hbos::slam::read_frame_stamps(dir.file("twice.txt")),
+      Contains("twice.txt:4: frame stamp 2.500000 is listed again (first at line 2)"));
 }

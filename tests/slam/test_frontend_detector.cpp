@@ -13,6 +13,10 @@
 #include <opencv2/imgproc.hpp>
 
 #include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
 
 using Catch::Matchers::Contains;
 using hbos_test::slam_data;
@@ -78,4 +82,32 @@ TEST_CASE("detector: a missing model is named", "[frontend][detector]") {
   CHECK_THROWS_WITH(
       hbos::slam::PersonDetector(c),
       Contains("/nonexistent/models/yolo-fastest-1.1_body.cfg") && Contains("not found"));
+}
+
+TEST_CASE("detector: truncated weights are refused, not read as zeros", "[frontend][detector]") {
+  namespace fs = std::filesystem;
+  const fs::path model = slam_data("models/yolo-fastest-1.1_body");
+  const fs::path dir = fs::temp_directory_path() / "hbos_detector_truncated";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  fs::copy_file(model / "yolo-fastest-1.1_body.cfg", dir / "yolo-fastest-1.1_body.cfg");
+  const fs::path weights = dir / "yolo-fastest-1.1_body.weights";
+  std::ifstream in(model / "yolo-fastest-1.1_body.weights", std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  hbos::slam::MaskConfig c = detector_config();
+  c.detector_dir = dir.string();
+  // The whole file loads; a file one weight short, or cut after the header, does not (OpenCV
+  // read both without a word, and the short one made the detector find people in noise).
+  for (const std::size_t size : {bytes.size(), bytes.size() - 4, std::size_t{100000}}) {
+    std::ofstream(weights, std::ios::binary | std::ios::trunc)
+        .write(bytes.data(), static_cast<long>(size));
+    if (size == bytes.size()) {
+      CHECK_NOTHROW(hbos::slam::PersonDetector(c));
+    } else {
+      CHECK_THROWS_WITH(hbos::slam::PersonDetector(c),
+                        Contains("are truncated: " + std::to_string(size) + " bytes") &&
+                            Contains("needs " + std::to_string(bytes.size())));
+    }
+  }
+  fs::remove_all(dir);
 }

@@ -1,8 +1,11 @@
 #include "render/writer.hpp"
 
 #include <chrono>
+#include <csignal>
 #include <cstdio>
 #include <fstream>
+#include <set>
+#include <string>
 
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
@@ -107,21 +110,55 @@ nlohmann::json describe(const SequenceRenderer& r) {
   return j;
 }
 
-}  // namespace
-
-WriteStats write_sequence(SequenceRenderer& r, const fs::path& out, bool overwrite,
-                          const Progress& progress) {
-  using Clock = std::chrono::steady_clock;
-  const auto t0 = Clock::now();
+// True when `dir` is a folder holding nothing but what write_sequence writes: the only kind of
+// folder it ever deletes (a finished output it replaces, or its own unfinished temporary one).
+bool only_render_output(const fs::path& dir) {
   std::error_code ec;
-  if (fs::exists(out, ec) && !overwrite) {
-    throw OutputError("output folder " + out.string() +
-                      " already exists (pass --overwrite to replace it)");
+  if (!fs::is_directory(dir, ec) || fs::is_symlink(dir, ec)) return false;
+  static const std::set<std::string> kNames = {
+      "rgb",       "depth",           "objects",          "masks",        "rgb.txt",
+      "depth.txt", "groundtruth.txt", "associations.txt", "scenario.json"};
+  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec))
+    if (kNames.count(it->path().filename().string()) == 0) return false;
+  return !ec;
+}
+
+// Refuses an output path whose replacement could delete what is not ours.
+void check_output_path(const fs::path& out, bool overwrite) {
+  fs::path normal = out.lexically_normal();
+  if (!normal.has_filename()) normal = normal.parent_path();  // "a/b/" names the folder b
+  const std::string name = normal.filename().string();
+  if (out.empty() || name.empty() || name == "." || name == ".." || normal == normal.root_path())
+    throw OutputError("output folder '" + out.string() +
+                      "' names no folder of its own: give a new folder's name");
+  std::error_code ec;
+  if (fs::exists(out, ec)) {
+    if (!overwrite)
+      throw OutputError("output folder " + out.string() +
+                        " already exists (pass --overwrite to replace it)");
+    if (!fs::is_directory(out, ec))
+      throw OutputError("cannot replace " + out.string() + ": it is not a folder");
+    if (fs::exists(out / "scenario.json", ec) == false || !only_render_output(out))
+      throw OutputError("refusing to replace " + out.string() +
+                        ": it holds files hbos-render did not write (only a previous "
+                        "hbos-render output is replaced by --overwrite)");
+    if (fs::equivalent(out, fs::current_path(ec), ec))
+      throw OutputError("refusing to replace " + out.string() + ": it is the current folder");
   }
   fs::path tmp = out;
   tmp += ".tmp";
-  fs::remove_all(tmp, ec);
-  if (ec) throw OutputError("cannot remove stale " + tmp.string() + ": " + ec.message());
+  if (fs::exists(tmp, ec) && !only_render_output(tmp))
+    throw OutputError("cannot use " + tmp.string() +
+                      " for the unfinished output: it exists and holds files hbos-render did "
+                      "not write; move it away");
+}
+
+// Renders every frame into `tmp`, then replaces `out` with it.
+WriteStats write_into(SequenceRenderer& r, const fs::path& tmp, const fs::path& out,
+                      const Progress& progress, const volatile std::sig_atomic_t* stop,
+                      std::chrono::steady_clock::time_point t0) {
+  using Clock = std::chrono::steady_clock;
+  std::error_code ec;
   const auto& variants = mask_variant_names();
   for (const char* d : {"rgb", "depth", "objects"}) {
     fs::create_directories(tmp / d, ec);
@@ -143,6 +180,9 @@ WriteStats write_sequence(SequenceRenderer& r, const fs::path& out, bool overwri
   cv::Mat previous_ids;
   const int n = r.frame_count();
   for (int i = 0; i < n; ++i) {
+    if (stop != nullptr && *stop != 0)
+      throw Interrupted("interrupted after " + std::to_string(i) + " of " + std::to_string(n) +
+                        " frames; nothing was written to " + out.string());
     const auto tr = Clock::now();
     Frame f = r.render(i);
     stats.render_seconds += std::chrono::duration<double>(Clock::now() - tr).count();
@@ -180,6 +220,27 @@ WriteStats write_sequence(SequenceRenderer& r, const fs::path& out, bool overwri
                       ec.message());
   stats.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
   return stats;
+}
+
+}  // namespace
+
+WriteStats write_sequence(SequenceRenderer& r, const fs::path& out, bool overwrite,
+                          const Progress& progress, const volatile std::sig_atomic_t* stop) {
+  using Clock = std::chrono::steady_clock;
+  const auto t0 = Clock::now();
+  check_output_path(out, overwrite);
+  std::error_code ec;
+  fs::path tmp = out;
+  tmp += ".tmp";
+  fs::remove_all(tmp, ec);
+  if (ec) throw OutputError("cannot remove stale " + tmp.string() + ": " + ec.message());
+  try {
+    return write_into(r, tmp, out, progress, stop, t0);
+  } catch (...) {
+    // Nothing half-written stays behind: <out> is either absent, the old one, or complete.
+    fs::remove_all(tmp, ec);
+    throw;
+  }
 }
 
 }  // namespace hbos::render

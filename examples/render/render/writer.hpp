@@ -7,6 +7,7 @@
 /// Everything is written into `<out>.tmp` and renamed to `<out>` at the end, so `<out>` is either
 /// absent or complete.
 
+#include <csignal>
 #include <filesystem>
 #include <functional>
 #include <stdexcept>
@@ -17,6 +18,12 @@ namespace hbos::render {
 
 /// The output folder cannot be used or written; `what()` names the path.
 class OutputError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// A signal asked the run to stop (see write_sequence's `stop`); nothing was written.
+class Interrupted : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
 };
@@ -32,10 +39,14 @@ struct WriteStats {
 using Progress = std::function<void(int, int)>;
 
 /// Renders every frame of `r` and writes the folder `out` (which must not exist, unless
-/// `overwrite`: then it is replaced once the new one is complete).
-/// \throws OutputError.
+/// `overwrite`: then it is replaced once the new one is complete, and only if it is a previous
+/// output of this function: a folder of other files, the current folder, `.` or `/` are refused
+/// before anything is deleted). `stop`, polled between frames, ends the run when it becomes
+/// non-zero (Ctrl-C); the unfinished `<out>.tmp` is removed on any failure.
+/// \throws OutputError, Interrupted.
 WriteStats write_sequence(SequenceRenderer& r, const std::filesystem::path& out, bool overwrite,
-                          const Progress& progress = {});
+                          const Progress& progress = {},
+                          const volatile std::sig_atomic_t* stop = nullptr);
 
 /// TUM's stamp format: seconds with 6 decimals.
 std::string format_stamp(double stamp);

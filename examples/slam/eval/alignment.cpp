@@ -4,6 +4,8 @@
 
 #include <Eigen/LU>
 #include <Eigen/SVD>
+#include <algorithm>
+#include <cmath>
 
 namespace hbos::slam {
 
@@ -52,9 +54,20 @@ Similarity3 align_similarity(const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& 
   const Eigen::Vector3d y_mean = y.rowwise().mean();
   const Eigen::Matrix3Xd x_centred = x.colwise() - x_mean;
   const double x_variance = x_centred.squaredNorm() / n;
-  detail::require(x_variance > 0.0,
+  const Eigen::Matrix3Xd y_centred = y.colwise() - y_mean;
+  // A spread at the level of the coordinates' rounding is no spread: points that coincide but for
+  // their last bits gave a scale of 1e-28 and a "perfect" fit. 1e-9 of the coordinates' size
+  // (a nanometre at a metre from the origin) is millions of roundings, and far below any motion
+  // a trajectory measures.
+  const auto spread_is_rounding = [](double variance, const Eigen::Vector3d& mean) {
+    return !(std::sqrt(variance) > 1e-9 * std::max(1.0, mean.norm()));
+  };
+  detail::require(!spread_is_rounding(x_variance, x_mean),
                   "align_similarity: all estimate points coincide, so no scale can be estimated");
-  const Eigen::Matrix3d sigma_xy = (y.colwise() - y_mean) * x_centred.transpose() / n;
+  detail::require(!spread_is_rounding(y_centred.squaredNorm() / n, y_mean),
+                  "align_similarity: all ground-truth points coincide, so no scale can be "
+                  "estimated");
+  const Eigen::Matrix3d sigma_xy = y_centred * x_centred.transpose() / n;
   double trace_ds = 0.0;
   Similarity3 result;
   result.rotation = proper_rotation(sigma_xy, &trace_ds);

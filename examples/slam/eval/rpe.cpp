@@ -107,6 +107,11 @@ RpeResult compute_rpe(const Trajectory& gt, const Trajectory& est, const RpePara
 
   // 1. Candidate pairs (i, j).
   const std::vector<double> axis = delta_axis(gt, est, params);
+  // Beyond the whole span no pair exists; far beyond it (1e16 s), axis[i] + delta rounds to the
+  // same number for every i and the closest index came out as 0: every pair (i, 0), exit 0.
+  detail::require(params.delta <= axis.back() - axis.front(), "compute_rpe: the delta ",
+                  params.delta, " exceeds the whole span of '", est.name, "' (",
+                  axis.back() - axis.front(), " in the delta's unit)");
   std::vector<std::pair<std::size_t, std::size_t>> candidates;
   for (std::size_t i = 0; i < axis.size(); ++i) {
     const auto j = at(find_closest_index(axis, axis[i] + params.delta));

@@ -251,6 +251,7 @@ std::vector<double> read_frame_stamps(const std::string& path) {
   detail::require(static_cast<bool>(in), path, ": cannot open frame list (", std::strerror(errno),
                   ")");
   std::vector<double> stamps;
+  std::vector<Eigen::Index> lines;  // of each stamp, for messages
   std::string text;
   Eigen::Index line_number = 0;
   while (std::getline(in, text)) {
@@ -264,9 +265,20 @@ std::vector<double> read_frame_stamps(const std::string& path) {
     detail::require(std::abs(stamp) <= kMaxAbsStamp, location(path, line_number), ": frame stamp '",
                     fields.front(), "' is not a plausible time in seconds (|t| must be <= 1e12)");
     stamps.push_back(stamp);
+    lines.push_back(line_number);
   }
   detail::require(!in.bad(), path, ": read error");
   detail::require(!stamps.empty(), path, ": no frame stamps found");
+  // A frame listed twice would be counted twice in the share of frames tracked.
+  std::vector<std::size_t> order(stamps.size());
+  for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return stamps[a] < stamps[b]; });
+  for (std::size_t k = 1; k < order.size(); ++k) {
+    detail::require(stamps[order[k]] != stamps[order[k - 1]], location(path, lines[order[k]]),
+                    ": frame stamp ", fmt::format("{:.6f}", stamps[order[k]]),
+                    " is listed again (first at line ", lines[order[k - 1]], ")");
+  }
   std::sort(stamps.begin(), stamps.end());
   return stamps;
 }

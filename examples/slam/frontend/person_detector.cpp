@@ -5,9 +5,44 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
+#include <fstream>
+#include <string>
 
 namespace hbos::slam {
+namespace {
+
+// OpenCV's Darknet reader fills whatever a short weights file lacks without a word, and the
+// network then detects nothing, or noise. The file must hold every weight the cfg asks for:
+// Darknet's header (three int32 version numbers, then the images seen: int64 from version 0.2,
+// int32 before) and, per convolution, its weights and biases and, with batch normalisation, the
+// scales, means and variances: in OpenCV's network, the blobs of its Convolution and BatchNorm
+// layers (the Region layers' anchors come from the cfg).
+void check_weights_size(cv::dnn::Net& net, const std::string& weights) {
+  std::ifstream in(weights, std::ios::binary);
+  std::int32_t version[3] = {0, 0, 0};
+  in.read(reinterpret_cast<char*>(version), sizeof version);
+  const std::uintmax_t bytes = std::filesystem::file_size(weights);
+  const bool long_seen =
+      version[0] * 10 + version[1] >= 2 && version[0] < 1000 && version[1] < 1000;
+  const std::uintmax_t header = 12 + (long_seen ? 8 : 4);
+  std::uintmax_t needed = 0;
+  for (const std::string& name : net.getLayerNames()) {
+    const cv::Ptr<cv::dnn::Layer> layer = net.getLayer(name);
+    if (layer->type != "Convolution" && layer->type != "BatchNorm") continue;
+    for (const cv::Mat& blob : layer->blobs) needed += blob.total();
+  }
+  const std::uintmax_t needed_bytes = header + 4 * needed;
+  if (!in || bytes < needed_bytes) {
+    throw InvalidArgument(fmt::format(
+        "detector weights '{}' are truncated: {} bytes, the network of its cfg needs {} ({} "
+        "weights after a {}-byte header)",
+        weights, bytes, needed_bytes, needed, header));
+  }
+}
+
+}  // namespace
 
 PersonDetector::PersonDetector(const MaskConfig& config)
     : confidence_(config.detector_confidence),
@@ -35,6 +70,7 @@ PersonDetector::PersonDetector(const MaskConfig& config)
     throw InvalidArgument(fmt::format("cannot load detector '{}': {}", cfg, e.what()));
   }
   if (net_.empty()) throw InvalidArgument(fmt::format("cannot load detector '{}'", cfg));
+  check_weights_size(net_, weights);
   output_names_ = net_.getUnconnectedOutLayersNames();
 }
 

@@ -1,6 +1,7 @@
 #include "frontend/sequence_run.hpp"
 
 #include <fmt/format.h>
+#include <hbos/error.hpp>
 
 #include <algorithm>
 #include <chrono>
@@ -76,7 +77,13 @@ RunResult run_tracker(const std::function<Frame(int)>& frame_at, int n, const Co
       run.interrupted = true;
       break;
     }
-    Frame frame = frame_at(i);
+    Frame frame;
+    try {
+      frame = frame_at(i);
+    } catch (const InvalidArgument& e) {
+      run.input_error = e.what();
+      break;
+    }
     const auto track_start = std::chrono::steady_clock::now();
     TrackResult result = tracker.track(frame);
     run.track_us.push_back(

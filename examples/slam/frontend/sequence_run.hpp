@@ -17,6 +17,7 @@
 #include <functional>
 #include <iosfwd>
 #include <optional>
+#include <string>
 #include <vector>
 
 namespace hbos::slam {
@@ -63,13 +64,18 @@ struct RunResult {
   std::optional<FigureFrame> figure;     ///< the frame chosen for the figures
   std::optional<Evaluation> evaluation;  ///< when the sequence has ground truth
   bool interrupted = false;              ///< stopped by `stop` before frame n-1
+  /// Set when reading frame stats.size() failed (hbos::InvalidArgument: an image that cannot be
+  /// decoded, a size that does not match): the run holds the frames before it. Callers that
+  /// need every frame treat it as their error.
+  std::optional<std::string> input_error;
 };
 
 /// Tracks frames 0 .. n-1 given by `frame_at` with a fresh Tracker. The figure frame is
 /// `output.figure_frame`, or with -1 the one with the most person matches (else the middle one).
 /// With `progress`, one line per frame is written to it. When `stop` is given and becomes
 /// non-zero (a SIGINT handler sets it), the run ends after the frame in progress: the result
-/// holds the frames done so far and `interrupted` is set.
+/// holds the frames done so far and `interrupted` is set. A frame that cannot be read ends the
+/// run the same way, with `input_error` set.
 [[nodiscard]] RunResult run_tracker(const std::function<Frame(int)>& frame_at, int n,
                                     const Config& config, const CameraModel& camera,
                                     std::ostream* progress,

@@ -214,7 +214,14 @@ int run_single(const CommandOptions& o, const CameraModel& camera, const RgbdSeq
                             o.quiet ? nullptr : &err, StopOnSignal::flag());
   }
   RunResult& run = map_run ? map_run->run : frame_run;
-  const bool interrupted = StopOnSignal::stopped();
+  if (run.input_error) {
+    // The frames before the bad one are kept, as on Ctrl-C; the exit status says bad input.
+    err << fmt::format("hbos-slam: error: {}\nhbos-slam: stopped at frame {} of {}; {}\n",
+                       *run.input_error, run.stats.size() + 1, n,
+                       run.stats.empty() ? "nothing to write" : "writing the frames before it");
+    if (run.stats.empty()) return kSlamBadInput;
+  }
+  const bool interrupted = !run.input_error && StopOnSignal::stopped();
   if (interrupted) {
     err << fmt::format("hbos-slam: interrupted after {} of {} frames; writing them\n",
                        run.stats.size(), n);
@@ -272,6 +279,7 @@ int run_single(const CommandOptions& o, const CameraModel& camera, const RgbdSeq
     err << "hbos-slam: error: " << e.what() << "\n";
     return interrupted ? kSlamInterrupted : kSlamOutputError;
   }
+  if (run.input_error) return kSlamBadInput;
   return interrupted ? kSlamInterrupted : kSlamOk;
 }
 
@@ -344,6 +352,14 @@ int run_slam_command(int argc, const char* const* argv, std::ostream& out, std::
     const CameraModel camera = load_camera(options.config.dataset.camera);
     const RgbdSequence sequence = load_tum_sequence(
         options.config.dataset.path, options.config.dataset.max_association_difference);
+    if (sequence.unpaired_rgb > 0) {
+      // Skipped frames are a gap the tracker bridges as one long step: say so.
+      err << fmt::format(
+          "hbos-slam: warning: {} of {} colour images in {}/rgb.txt have no depth image within "
+          "{} s; they are skipped\n",
+          sequence.unpaired_rgb, sequence.unpaired_rgb + sequence.size(),
+          options.config.dataset.path, options.config.dataset.max_association_difference);
+    }
     if (options.variant_grid) {
       check_run_inputs(options.config, camera, sequence);
       return run_variant_grid_command(options.config, camera, sequence, options.quiet, out, err);

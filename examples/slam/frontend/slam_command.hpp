@@ -11,8 +11,8 @@ enum SlamExitCode : int {
   kSlamOk = 0,
   kSlamOutputError = 1,  ///< a result file could not be written
   kSlamBadInput = 2,     ///< bad option, missing or malformed dataset, unreadable image or model
-  /// SIGINT/SIGTERM during the run: the frames done so far were written (128 + SIGINT, as a
-  /// shell reports a Ctrl-C).
+  /// SIGINT, SIGTERM or SIGHUP during the run: the frames done so far were written (128 + SIGINT,
+  /// as a shell reports a Ctrl-C).
   kSlamInterrupted = 130,
 };
 

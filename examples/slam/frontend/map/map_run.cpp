@@ -1,6 +1,7 @@
 #include "frontend/map/map_run.hpp"
 
 #include <fmt/format.h>
+#include <hbos/error.hpp>
 
 #include <chrono>
 #include <future>
@@ -94,7 +95,13 @@ MapRun run_map_tracker(const std::function<Frame(int)>& frame_at, int n, const C
   std::future<TimedFrame> next;
   if (n > 0) next = std::async(std::launch::async, read_timed, std::cref(frame_at), 0);
   for (int i = 0; i < n; ++i) {
-    TimedFrame current = next.get();  // rethrows a read error of frame i
+    TimedFrame current;
+    try {
+      current = next.get();  // rethrows a read error of frame i
+    } catch (const InvalidArgument& e) {
+      run.input_error = e.what();
+      break;
+    }
     if (stop != nullptr && *stop != 0) {
       run.interrupted = true;
       break;
