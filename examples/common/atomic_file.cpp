@@ -297,4 +297,12 @@ void write_file_atomically(const std::filesystem::path& target, std::string_view
   file.commit();
 }
 
+bool is_same_file(const std::filesystem::path& output, const std::filesystem::path& input) {
+  if (output.empty() || input.empty() || output == "-" || input == "-") return false;
+  std::error_code ec;
+  if (!std::filesystem::exists(output, ec) || !std::filesystem::exists(input, ec)) return false;
+  const bool same = std::filesystem::equivalent(output, input, ec);
+  return !ec && same;
+}
+
 }  // namespace hbos::examples

@@ -38,6 +38,12 @@ class WriteError : public std::runtime_error {
 /// \throws WriteError on any failure.
 void write_file_atomically(const std::filesystem::path& path, std::string_view content);
 
+/// True when `output` names an existing file that is `input` itself (also through links or
+/// another spelling of the path): writing it would replace the input. `-` (a standard stream)
+/// and an empty path are never the same file as anything.
+[[nodiscard]] bool is_same_file(const std::filesystem::path& output,
+                                const std::filesystem::path& input);
+
 /// The same, for content produced piece by piece (a result too large to hold as one string):
 /// open, write() any number of times, commit(). Until commit() returns, readers of `path` see the
 /// old file; destroying an AtomicFile that was not committed (an exception, an early return)

@@ -50,4 +50,30 @@ inline CLI::Validator non_negative_number() {
                               "NONNEGATIVE");
 }
 
+/// A seed: a decimal integer in [0, 2^64 - 1] (the standard parse took "-1" for 2^64 - 1 and
+/// larger numbers for 2^64 - 1 too, and an empty value for 0).
+inline CLI::Validator seed_value() {
+  return CLI::Validator(
+      [](std::string& value) {
+        const std::string what =
+            "a seed is a decimal integer in [0, 18446744073709551615], got '" + value + "'";
+        if (value.empty() || value.size() > 20 ||
+            value.find_first_not_of("0123456789") != std::string::npos)
+          return what;
+        errno = 0;
+        static_cast<void>(std::strtoull(value.c_str(), nullptr, 10));
+        return errno == ERANGE ? what : std::string();
+      },
+      "SEED");
+}
+
+/// A path that is not empty (`--json ''` was silently the same as no --json at all).
+inline CLI::Validator non_empty_path() {
+  return CLI::Validator(
+      [](std::string& value) {
+        return value.empty() ? std::string("an empty path names no file") : std::string();
+      },
+      "PATH");
+}
+
 }  // namespace hbos::examples

@@ -1,6 +1,7 @@
 #include "dynbench/dynbench_command.hpp"
 
 #include "common/atomic_file.hpp"
+#include "common/cli_validators.hpp"
 #include "common/stop_on_signal.hpp"
 #include "dynbench/bench_figures.hpp"
 #include "dynbench/cell_run.hpp"
@@ -74,7 +75,9 @@ void add_options(CLI::App& app, CommandOptions& o) {
                        : "'" + v + "' is not a mask variant";
           },
           "VARIANT");
-  app.add_option("--seeds", o.seeds, "comma-separated seeds (default 1,2)")->delimiter(',');
+  app.add_option("--seeds", o.seeds, "comma-separated seeds (default 1,2)")
+      ->delimiter(',')
+      ->check(examples::seed_value());
   app.add_option("--frames", s.frames, "frames per sequence (0 = the whole trajectory)")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
@@ -88,8 +91,10 @@ void add_options(CLI::App& app, CommandOptions& o) {
                "every scenario at full length, every mask variant, seeds 1,2,3 (explicit "
                "--scenarios/--variants/--seeds/--frames still win)");
   app.add_option("--out", s.out_dir, "output folder (dynbench.md, dynbench.json, figures/, cells/)")
-      ->capture_default_str();
-  app.add_option("--cache", o.cache_dir, "rendered sequences (default: <out>/cache)");
+      ->capture_default_str()
+      ->check(examples::non_empty_path());
+  app.add_option("--cache", o.cache_dir, "rendered sequences (default: <out>/cache)")
+      ->check(examples::non_empty_path());
   app.add_option("--renderer", s.renderer, "the hbos-render executable")->capture_default_str();
   app.add_flag("--rerender", s.rerender, "render the sequences again even when cached");
   app.add_option("--camera", s.camera, "intrinsics of the rendered sequences")

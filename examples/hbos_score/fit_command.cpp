@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "common/atomic_file.hpp"
 #include "csv_reader.hpp"
 #include "data_matrix.hpp"
 #include "npy_reader.hpp"
@@ -218,6 +219,9 @@ int fit_command(int argc, char** argv) {
     return app.exit(e) == 0 ? 0 : kExitBadInput;
   }
   try {
+    if (hbos::examples::is_same_file(o.output, o.input))
+      throw std::invalid_argument("-o '" + o.output + "' is the input file itself: the model " +
+                                  "would replace the data");
     CsvOptions csv;
     if (o.header) csv.header = HeaderMode::Present;
     if (o.no_header) csv.header = HeaderMode::Absent;

@@ -87,6 +87,10 @@ char parse_delimiter(const std::string& text) {
 }
 
 int run(const ScoreOptions& options) {
+  if (hbos::examples::is_same_file(options.output, options.input))
+    throw std::invalid_argument("-o '" + options.output +
+                                "' is the input file itself: the scores " +
+                                "would replace the data");
   ScoreInput input = read_score_input(options.input, options.csv);
   // The values become the contributions in place: the data is held once, start to end.
   const ScoredTable scored = score_table(options, input, std::move(input.values));

@@ -113,6 +113,11 @@ int score_command(int argc, char** argv) {
     return app.exit(e) == 0 ? 0 : kExitBadInput;
   }
   try {
+    for (const std::string& in : {input, model_path}) {
+      if (hbos::examples::is_same_file(output, in))
+        throw std::invalid_argument("-o '" + output + "' is the input file '" + in +
+                                    "' itself: the scores would replace it");
+    }
     const ModelFileInfo info = read_model_info(model_path);
     if (info.scalar != "double")
       throw std::invalid_argument("model file '" + model_path + "' holds a " + info.scalar +

@@ -10,6 +10,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "common/cli_validators.hpp"
 #include "common/stop_on_signal.hpp"
 #include "render/sequence.hpp"
 #include "render/writer.hpp"
@@ -42,13 +43,15 @@ int main(int argc, char** argv) {
   for (const auto& n : scenario_names()) names += (names.empty() ? "" : ", ") + n;
   app.add_option("--scenario", o.scenario, "scenario: " + names)->capture_default_str();
   app.add_option("--seed", o.seed, "seed (same scenario + seed = same bytes)")
+      ->check(hbos::examples::seed_value())
       ->capture_default_str();
   app.add_option("--out", out,
                  "output folder (TUM format; written via <out>.tmp; Ctrl-C leaves neither)")
       ->required();
   app.add_option("--frames", o.frames, "frames to render (0 = the whole trajectory)")
       ->capture_default_str();
-  app.add_option("--people", o.people, "people in the scene, 1..3 (default: the scenario's)");
+  app.add_option("--people", o.people, "people in the scene, 1..3 (default: the scenario's)")
+      ->check(CLI::Range(1, 3));
   std::string data_dir = o.data_dir.string();
   app.add_option("--data-dir", data_dir, "renderer data (textures/, trajectories/)")
       ->capture_default_str();

@@ -623,3 +623,26 @@ TEST_CASE("hbos-score: the one-shot form of a file without a header names its co
   INFO(periodic.err);
   CHECK(periodic.exit_code == 0);
 }
+
+TEST_CASE("hbos-score: -o naming an input file is refused, the input kept", "[cli][hbos_score]") {
+  const fs::path data = work_dir() / "own_output.csv";
+  fs::copy_file(kData + "/good.csv", data, fs::copy_options::overwrite_existing);
+  const std::string before = slurp(data);
+  // The scorer, `fit` and `score`: each would have replaced its input.
+  const Run scored = hbos_score("own_output_score", {data.string(), "-o", data.string()});
+  CHECK(scored.exit_code == 2);
+  CHECK_THAT(scored.err, Catch::Contains("is the input file itself"));
+  const Run fitted = hbos_score("own_output_fit", {"fit", data.string(), "-o", data.string()});
+  CHECK(fitted.exit_code == 2);
+  CHECK_THAT(fitted.err, Catch::Contains("is the input file itself"));
+  const fs::path model = work_dir() / "own_output.hbos";
+  REQUIRE(hbos_score("own_output_model", {"fit", data.string(), "-o", model.string()}).exit_code ==
+          0);
+  for (const fs::path& target : {data, model}) {
+    const Run r = hbos_score("own_output_score_model",
+                             {"score", model.string(), data.string(), "-o", target.string()});
+    CHECK(r.exit_code == 2);
+    CHECK_THAT(r.err, Catch::Contains("itself: the scores would replace it"));
+  }
+  CHECK(slurp(data) == before);
+}

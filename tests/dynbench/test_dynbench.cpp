@@ -210,6 +210,17 @@ TEST_CASE("dynbench: bad input exits 2 with the reason", "[dynbench]") {
             {"--renderer", scratch.file("no-such-renderer"), "--out", scratch.file("o"), "--quiet"},
             nullptr, &err) == hbos::dynbench::kDynbenchBadInput);
   CHECK_THAT(err, Catch::Contains("no-such-renderer"));
+  // Seeds: "-1" wrapped to 2^64 - 1, a number past 2^64 - 1 was clamped to it, '' ran seed 0.
+  for (const char* seeds : {"-1", "99999999999999999999", "", "1,x"}) {
+    err.clear();
+    CHECK(dynbench({"--seeds", seeds, "--quiet", "--out", scratch.file("o")}, nullptr, &err) ==
+          hbos::dynbench::kDynbenchBadInput);
+    CHECK_THAT(err, Catch::Contains("a seed is a decimal integer"));
+  }
+  // An empty --out wrote into the current folder.
+  err.clear();
+  CHECK(dynbench({"--out", "", "--quiet"}, nullptr, &err) == hbos::dynbench::kDynbenchBadInput);
+  CHECK_THAT(err, Catch::Contains("an empty path names no file"));
 }
 
 TEST_CASE("dynbench --help names the front end's on/off settings and their defaults",

@@ -164,6 +164,24 @@ TEST_CASE("hbos-eval: bad input gives exit 2 and a message naming file:line", "[
   const Run help = run({"--help"});
   CHECK(help.code == 0);
   CHECK_THAT(help.out, Contains("--lenient-duplicates"));
+
+  // --json naming an input would replace it; --json '' was the same as no --json at all.
+  const std::string estimate = dir.file("est.txt");
+  std::filesystem::copy_file(kRgbdslam, estimate);
+  const auto read = [](const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream text;
+    text << in.rdbuf();
+    return text.str();
+  };
+  const std::string before = read(estimate);
+  const Run onto_input = run({kGt, estimate, "--json", estimate});
+  CHECK(onto_input.code == 2);
+  CHECK_THAT(onto_input.err, Contains("is the input file") && Contains("est.txt"));
+  CHECK(read(estimate) == before);
+  const Run empty_json = run({kGt, kRgbdslam, "--json", ""});
+  CHECK(empty_json.code == 2);
+  CHECK_THAT(empty_json.err, Contains("an empty path names no file"));
 }
 
 TEST_CASE("hbos-eval: an output that cannot be written gives exit 1", "[eval][command]") {

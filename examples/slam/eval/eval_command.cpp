@@ -66,8 +66,10 @@ void add_options(CLI::App& app, CommandOptions& o) {
                  "the sequence's rgb.txt (first column: frame stamps), to count frames for the "
                  "share tracked (without it, frames are counted from the spacing of the "
                  "estimate's stamps)");
-  app.add_option("--json", o.json_path, "write the results as JSON to this file (atomically)");
-  app.add_option("--plot", o.plot_dir, "write PNG plots into this directory");
+  app.add_option("--json", o.json_path, "write the results as JSON to this file (atomically)")
+      ->check(examples::non_empty_path());
+  app.add_option("--plot", o.plot_dir, "write PNG plots into this directory")
+      ->check(examples::non_empty_path());
   app.add_option("--plot-plane", o.plot_plane, "projection of the top view")
       ->capture_default_str()
       ->check(CLI::IsMember({"xy", "xz", "yz"}));
@@ -100,6 +102,10 @@ int run(const CommandOptions& o, std::ostream& out, std::ostream& err) {
   read_options.stamps = o.lenient_duplicates ? StampPolicy::kLikeTumScripts : StampPolicy::kStrict;
   read_options.max_quaternion_norm_error = o.quaternion_tolerance;
 
+  for (const std::string& input : {o.gt_path, o.est_path, o.frames_path}) {
+    detail::require(!examples::is_same_file(o.json_path, input), "--json '", o.json_path,
+                    "' is the input file '", input, "' itself: the results would replace it");
+  }
   nlohmann::json inputs;
   const Trajectory gt = read_input(o.gt_path, read_options, "groundtruth", inputs, err);
   const Trajectory est = read_input(o.est_path, read_options, "estimate", inputs, err);
