@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -25,6 +26,9 @@ std::string_view dict_value(const std::string& path, std::string_view header,
   const std::string quoted = "'" + std::string(key) + "'";
   const std::size_t at = header.find(quoted);
   if (at == std::string_view::npos) fail(path, "the .npy header has no '" + std::string(key) + "'");
+  // numpy would take the last of two; which one a writer meant is not knowable.
+  if (header.find(quoted, at + quoted.size()) != std::string_view::npos)
+    fail(path, "the .npy header names '" + std::string(key) + "' twice");
   std::size_t i = header.find(':', at + quoted.size());
   if (i == std::string_view::npos)
     fail(path, "malformed .npy header near '" + std::string(key) + "'");
@@ -37,7 +41,9 @@ std::string_view dict_value(const std::string& path, std::string_view header,
     if (header[end] == ')') --depth;
     ++end;
   }
-  return header.substr(i, end - i);
+  std::size_t stop = end;  // numpy's own writer puts no space before the comma; others may
+  while (stop > i && header[stop - 1] == ' ') --stop;
+  return header.substr(i, stop - i);
 }
 
 /// The dimensions of a shape tuple such as `(378, 30)`, `(378,)`.
@@ -151,8 +157,21 @@ NpyArray read_npy(const std::string& path) {
 
 bool is_npy_path(const std::string& path) {
   constexpr std::string_view suffix = ".npy";
-  return path.size() >= suffix.size() &&
-         path.compare(path.size() - suffix.size(), suffix.size(), suffix) == 0;
+  if (path.size() >= suffix.size()) {
+    bool same = true;  // the suffix in any case: x.NPY was parsed as CSV
+    for (std::size_t k = 0; k < suffix.size(); ++k)
+      same =
+          same && std::tolower(static_cast<unsigned char>(path[path.size() - suffix.size() + k])) ==
+                      suffix[k];
+    if (same) return true;
+  }
+  // Or numpy's magic string, whatever the name (a regular file only: never standard input).
+  std::error_code ec;
+  if (path == "-" || !std::filesystem::is_regular_file(path, ec)) return false;
+  std::ifstream in(path, std::ios::binary);
+  char magic[6] = {};
+  in.read(magic, sizeof magic);
+  return in.gcount() == 6 && std::string_view(magic, 6) == "\x93NUMPY";
 }
 
 void refuse_csv_options(const std::string& path, const CsvOptions& csv) {

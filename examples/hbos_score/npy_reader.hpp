@@ -37,7 +37,8 @@ struct NpyArray {
 /// widened 1 MiB at a time). \throws NpyError naming the file and what is wrong.
 [[nodiscard]] NpyArray read_npy(const std::string& path);
 
-/// Whether `path` names a `.npy` file (by its suffix): how read_data decides.
+/// Whether `path` names a `.npy` file: its suffix in any case, or numpy's magic string at the
+/// start of a regular file. How read_data decides.
 [[nodiscard]] bool is_npy_path(const std::string& path);
 
 /// Refuses the CSV-only options for the .npy file `path` (a label or ignored column, a header

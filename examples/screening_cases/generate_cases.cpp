@@ -62,13 +62,24 @@ int run(int argc, char** argv) {
 
   if (!preview.empty()) {
     if (only.empty()) throw hbos::InvalidArgument("--preview needs --only SCENE");
+    // OpenCV throws for a name whose extension it has no writer for (p.txt).
+    if (!cv::haveImageWriter(preview))
+      throw hbos::InvalidArgument(fmt::format(
+          "--preview '{}': no image format for its extension (use .png or .jpg)", preview));
     for (const CaseSpec& s : specs)
       if (s.name == only &&
           !cv::imwrite(preview, hbos::cases::preview_frame(s, inputs, preview_frame)))
         throw hbos::InvalidArgument(fmt::format("cannot write preview '{}'", preview));
     return 0;
   }
-  fs::create_directories(out);
+  {
+    std::error_code error;
+    fs::create_directories(out, error);
+    if (error || !fs::is_directory(out))
+      throw hbos::InvalidArgument(
+          fmt::format("--out '{}': cannot create the folder: {}", out,
+                      error ? error.message() : std::string("a file of that name exists")));
+  }
   nlohmann::ordered_json manifest;
   manifest["format"] = 1;
   manifest["grid"] = grid;

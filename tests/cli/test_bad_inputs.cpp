@@ -369,6 +369,11 @@ TEST_CASE("bad input: hbos-slam camera files with absurd or unreadable numbers",
        "principal point (cx, cy) = (31800, 255) px lies outside the 640x480 image"},
       {"distortion.yaml", "fx: 517\nfy: 516\ncx: 318\ncy: 255\nk1: 1e12\n",
        "distortion coefficient 'k1' = 1e+12 is not plausible"},
+      // Accepted before stop 37: the JSON's second fx won, every depth became 1e300 m.
+      {"twice.json", R"({"fx": 517.3, "fy": 516, "cx": 318, "cy": 255, "fx": 600})",
+       "twice.json: field 'fx' appears twice"},
+      {"depth.yaml", "fx: 517\nfy: 516\ncx: 318\ncy: 255\ndepth_factor: 1e-300\n",
+       "depth.yaml:5: field 'depth_factor' = 1e-300 must lie in [1, 1e9]"},
   };
   for (const Case& c : cases) {
     INFO(c.file);
@@ -385,9 +390,34 @@ TEST_CASE("bad input: hbos-slam camera files with absurd or unreadable numbers",
   const Run r = run(dir, kSlam, {"--camera", (dir / "cam.yaml").string(), "--quiet"});
   CHECK(r.exit_code == 2);
   CHECK_THAT(r.err, Contains("cam.yaml' is a directory"));
+  // A loop of links is named as one, not as a missing file.
+  fs::create_symlink(dir / "loop_b.yaml", dir / "loop_a.yaml");
+  fs::create_symlink(dir / "loop_a.yaml", dir / "loop_b.yaml");
+  const Run loop = run(dir, kSlam, {"--camera", (dir / "loop_a.yaml").string(), "--quiet"});
+  CHECK(loop.exit_code == 2);
+  CHECK_THAT(loop.err, Contains("loop_a.yaml': Too many levels of symbolic links"));
+  // A byte order mark before the first key is not part of it.
+  spit(dir / "bom.yaml",
+       "\xEF\xBB\xBF"
+       "fx: 517.3\nfy: 516.5\ncx: 318.6\ncy: 255.3\n");
+  const Run bom = run(dir, kSlam,
+                      {"--camera", (dir / "bom.yaml").string(), "--frames", "2", "--quiet", "--out",
+                       out, "--scenario", "static", "--mask", "none"});
+  CHECK(bom.exit_code == 0);
 }
 
 // ---- hbos-slam: options, images and outputs, all checked before the run ------------------------
+
+TEST_CASE("bad input: hbos-slam --person-depth outside a sensor's range is a usage error",
+          "[bad_inputs][hbos_slam]") {
+  const fs::path dir = scratch("slam_person_depth");
+  for (const char* depth : {"1e-300", "1e300", "0.1", "25"}) {
+    INFO(depth);
+    const Run r = run(dir, kSlam, {"--person-depth", depth, "--quiet"});
+    CHECK(r.exit_code == 2);
+    CHECK_THAT(r.err, Contains("--person-depth") && Contains("not in range 0.2"));
+  }
+}
 
 TEST_CASE("bad input: hbos-slam --features beyond its bound is a usage error",
           "[bad_inputs][hbos_slam]") {
@@ -439,6 +469,17 @@ TEST_CASE("bad input: hbos-slam names broken images before it runs", "[bad_input
     CHECK(r.exit_code == 2);
     CHECK_THAT(r.err, Contains(image.string()) && Contains("does not exist"));
     CHECK_THAT(r.err, !Contains("frame    1/"));
+  }
+  SECTION("a depth map listed as the first colour image (it was scaled to 8 bits and tracked)") {
+    const fs::path depth = first_image(seq, "depth.txt", 0);
+    std::string list = slurp(seq / "rgb.txt");
+    const fs::path first = first_image(seq, "rgb.txt", 0);
+    const std::string name = first.filename().string();
+    list.replace(list.find("rgb/" + name), 4 + name.size(), "depth/" + depth.filename().string());
+    spit(seq / "rgb.txt", list);
+    const Run r = run(dir, kSlam, base);
+    CHECK(r.exit_code == 2);
+    CHECK_THAT(r.err, Contains("is a 16-bit PNG, not an 8-bit colour image"));
   }
   SECTION("a directory listed as an image") {
     const fs::path image = first_image(seq, "rgb.txt", 1);

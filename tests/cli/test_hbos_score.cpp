@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -645,4 +646,50 @@ TEST_CASE("hbos-score: -o naming an input file is refused, the input kept", "[cl
     CHECK_THAT(r.err, Catch::Contains("itself: the scores would replace it"));
   }
   CHECK(slurp(data) == before);
+}
+
+namespace {
+
+// A version 1.0 .npy file of `values` (float64, C order) with `header` as its dict, padded as
+// numpy pads it.
+void write_npy(const fs::path& path, std::string header, const std::vector<double>& values) {
+  const std::size_t unpadded = 10 + header.size() + 1;
+  header.append((64 - unpadded % 64) % 64, ' ');
+  header += '\n';
+  std::ofstream out(path, std::ios::binary);
+  out.write("\x93NUMPY\x01\x00", 8);
+  const auto length = static_cast<std::uint16_t>(header.size());
+  const char length_bytes[2] = {static_cast<char>(length & 0xFF), static_cast<char>(length >> 8)};
+  out.write(length_bytes, 2);
+  out << header;
+  out.write(reinterpret_cast<const char*>(values.data()),
+            static_cast<std::streamsize>(values.size() * sizeof(double)));
+}
+
+}  // namespace
+
+TEST_CASE(
+    "hbos-score: .npy headers as other writers space them, duplicate keys, the suffix in any case",
+    "[cli][hbos_score]") {
+  const std::vector<double> values = {0.1, 1.0, 0.2, 1.1, 0.15, 5.0};  // 3 rows x 2 features
+  const fs::path spaced = work_dir() / "spaced.npy";
+  write_npy(spaced, "{ 'shape' : ( 3 , 2 ) , 'fortran_order' : False , 'descr' : '<f8' }", values);
+  const Run a = hbos_score("npy_spaced", {spaced.string(), "-o", "-"});
+  CHECK(a.exit_code == 0);
+  CHECK_THAT(a.err, Catch::Contains("3 rows x 2 features (.npy array)"));
+  // numpy would take the last of two 'descr'; which one the writer meant is not knowable.
+  const fs::path twice = work_dir() / "twice.npy";
+  write_npy(twice, "{'descr': '<f4', 'fortran_order': False, 'shape': (3, 2), 'descr': '<f8', }",
+            values);
+  const Run b = hbos_score("npy_twice", {twice.string(), "-o", "-"});
+  CHECK(b.exit_code == 2);
+  CHECK_THAT(b.err, Catch::Contains("names 'descr' twice"));
+  // x.NPY was parsed as CSV; a .npy without its suffix too.
+  for (const char* name : {"upper.NPY", "no_suffix"}) {
+    const fs::path other = work_dir() / name;
+    fs::copy_file(spaced, other, fs::copy_options::overwrite_existing);
+    const Run r = hbos_score(std::string("npy_") + name, {other.string(), "-o", "-"});
+    CHECK(r.exit_code == 0);
+    CHECK(r.out == a.out);
+  }
 }

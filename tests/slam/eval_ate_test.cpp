@@ -72,7 +72,7 @@ TEST_CASE("ATE recovers a known SE(3) between estimate and ground truth", "[eval
   }
 }
 
-TEST_CASE("Sim(3) ATE recovers a known similarity; SE(3) ATE cannot", "[eval][ate]") {
+TEST_CASE("Sim(3) ATE recovers a known similarity, SE(3) ATE cannot", "[eval][ate]") {
   for (unsigned seed = 1; seed <= 10; ++seed) {
     std::mt19937 rng(50 + seed);
     const Trajectory gt = synthetic_trajectory(200, 100.0, 1.0 / 30.0);
@@ -161,7 +161,7 @@ TEST_CASE("share tracked: evaluated poses over the frames in the ground-truth sp
                     Contains("another sequence"));
 }
 
-TEST_CASE("evaluate(): one association for SE(3) and Sim(3); RPE uses the Sim(3) scale",
+TEST_CASE("evaluate(): one association for SE(3) and Sim(3), RPE uses the Sim(3) scale",
           "[eval][evaluate]") {
   std::mt19937 rng(8);
   const Trajectory gt = synthetic_trajectory(600, 20.0, 0.01);

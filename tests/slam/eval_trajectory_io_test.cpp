@@ -74,6 +74,19 @@ TEST_CASE("TUM reader rejects malformed lines naming file:line, field and value"
   CHECK_THROWS_WITH(parse("1.0x 0 0 0 0 0 0 1\n"),
                     Contains("est.txt:1: field 't' is not a number: '1.0x'"));
   CHECK_THROWS_WITH(parse("1.0 0 0 +-1 0 0 0 1\n"), Contains("field 'tz' is not a number: '+-1'"));
+  // A byte order mark is shown, not printed invisibly before a stamp that looks right.
+  CHECK_THROWS_WITH(parse("\xEF\xBB\xBF"
+                          "1.0 0 0 0 0 0 0 1\n"),
+                    Contains("field 't' is not a number: '\\xEF\\xBB\\xBF1.0'"));
+  // A 10 MB field makes a message of a line, not of 10 MB.
+  const std::string huge(10'000'000, '7');
+  try {
+    static_cast<void>(parse(huge + "x 0 0 0 0 0 0 1\n"));
+    FAIL("accepted");
+  } catch (const hbos::InvalidArgument& e) {
+    CHECK(std::string(e.what()).size() < 200);
+    CHECK_THAT(e.what(), Contains("... (10000001 bytes)"));
+  }
   CHECK_THROWS_WITH(parse("1.0 0 0 nan 0 0 0 1\n"),
                     Contains("est.txt:1: field 'tz' is not finite: 'nan'"));
   CHECK_THROWS_WITH(parse(good + "2.0 inf 0 0 0 0 0 1\n"),

@@ -129,7 +129,7 @@ TEST_CASE("pose refiner: a narrower width pulls the pose less towards a biased m
   CHECK(from_noise_width < 0.75 * fixed);
 }
 
-TEST_CASE("pose refiner: a smallest noise scale outside (0, 1] is refused", "[slam][refine]") {
+TEST_CASE("pose refiner: a smallest noise scale outside 0 < s <= 1 is refused", "[slam][refine]") {
   for (const double bad : {0.0, -0.1, 1.5, std::nan("")}) {
     RefinementConfig c = from_noise();
     c.min_noise_scale = bad;

@@ -394,7 +394,7 @@ TEST_CASE("group_leverage is invariant to the world's scale, a common sigma fact
 }
 
 TEST_CASE(
-    "a match added to the rest never raises the ratio; one added to the group never lowers it",
+    "a match added to the rest never raises the ratio, one added to the group never lowers it",
     "[pose_leverage]") {
   const hbos::PinholeCamerad camera;
   Rng rng(41);

@@ -190,7 +190,7 @@ TEST_CASE(
 
 TEST_CASE(
     "coherence: a band a third of a sigma off is not called moving when the frame's keypoint "
-    "roundings agreed; a group moving 1.5 sigma still is",
+    "roundings agreed, and a group moving 1.5 sigma still is",
     "[screen_v2][coherence][gate]") {
   // Rendered frames with little image motion: the two frames round most keypoints alike, so the
   // measured noise scale falls far below what a pixel-grid detector delivers (0.1 here against
@@ -417,7 +417,7 @@ TEMPLATE_TEST_CASE("fuzz finding: extreme matches never get a NaN score, whateve
 
 TEST_CASE(
     "flagged consensus: a group of flagged new points moving together inside the gate vouches "
-    "for itself; the unflagged matches' evidence does not change",
+    "for itself, and the unflagged matches' evidence does not change",
     "[screen_v2][coherence]") {
   const double s = 0.4;
   hbos::Matchesd m = static_matches(400, s, 41);

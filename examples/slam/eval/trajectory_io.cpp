@@ -87,6 +87,19 @@ void require_readable_file(const std::string& path, const char* what) {
   detail::require(std::filesystem::exists(path, error), path, ": ", what, " does not exist");
 }
 
+// A field as a message shows it: bytes a terminal would not show (a byte order mark, a carriage
+// return) as \xHH, and at most 40 characters (a 10 MB field made a 10 MB message).
+std::string shown(std::string_view field) {
+  std::string text;
+  constexpr std::size_t kMaxShown = 40;
+  for (std::size_t k = 0; k < field.size() && k < kMaxShown; ++k) {
+    const auto byte = static_cast<unsigned char>(field[k]);
+    text += byte >= 0x20 && byte < 0x7F ? std::string(1, field[k]) : fmt::format("\\x{:02X}", byte);
+  }
+  if (field.size() > kMaxShown) text += fmt::format("... ({} bytes)", field.size());
+  return text;
+}
+
 struct ParsedLine {
   Eigen::Index line = 0;
   std::string stamp_text;  // as written, for messages (the double prints differently)
@@ -104,9 +117,9 @@ ParsedLine parse_pose_line(const std::vector<std::string_view>& fields, const st
   for (std::size_t k = 0; k < fields.size(); ++k) {
     double value = 0.0;
     detail::require(parse_double(fields[k], value), where, ": field '", kFieldNames[k],
-                    "' is not a number: '", fields[k], "'");
+                    "' is not a number: '", shown(fields[k]), "'");
     detail::require(std::isfinite(value), where, ": field '", kFieldNames[k], "' is not finite: '",
-                    fields[k], "'");
+                    shown(fields[k]), "'");
     parsed.values[k] = value;
   }
   for (std::size_t k = 1; k <= 3; ++k) {
@@ -261,7 +274,7 @@ std::vector<double> read_frame_stamps(const std::string& path) {
     double stamp = 0.0;
     detail::require(parse_double(fields.front(), stamp) && std::isfinite(stamp),
                     location(path, line_number), ": frame stamp is not a finite number: '",
-                    fields.front(), "'");
+                    shown(fields.front()), "'");
     detail::require(std::abs(stamp) <= kMaxAbsStamp, location(path, line_number), ": frame stamp '",
                     fields.front(), "' is not a plausible time in seconds (|t| must be <= 1e12)");
     stamps.push_back(stamp);

@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <set>
 #include <sstream>
 
 namespace hbos::slam {
@@ -60,7 +61,11 @@ void require_file(const std::string& path) {
   if (std::filesystem::is_directory(path, error)) {
     throw InvalidArgument(fmt::format("camera file '{}' is a directory", path));
   }
-  if (!std::filesystem::exists(path, error)) {
+  const bool exists = std::filesystem::exists(path, error);
+  if (error) {  // e.g. a loop of symbolic links: not "does not exist"
+    throw InvalidArgument(fmt::format("camera file '{}': {}", path, error.message()));
+  }
+  if (!exists) {
     throw InvalidArgument(fmt::format("camera file '{}' does not exist", path));
   }
 }
@@ -91,10 +96,12 @@ CameraModel build_camera(const std::string& name,
           "{}: field '{}' = {:g} px is not a plausible focal length (legal: [1, 1e6] px)", where,
           key, value));
     }
-    if (key == "depth_factor" && !(value > 0.0 && value <= kMaxDepthFactor)) {
-      throw InvalidArgument(
-          fmt::format("{}: field '{}' = {:g} must be > 0 and <= 1e9 (raw depth units per metre)",
-                      where, key, value));
+    // Below 1 a raw depth unit would be longer than a metre (a 16-bit map then reaches past the
+    // Moon); 1e-300 made every depth 1e300 m and the run went on.
+    if (key == "depth_factor" && !(value >= 1.0 && value <= kMaxDepthFactor)) {
+      throw InvalidArgument(fmt::format(
+          "{}: field '{}' = {:g} must lie in [1, 1e9] (raw depth units per metre; TUM: 5000)",
+          where, key, value));
     }
     if ((key[0] == 'k' || key[0] == 'p') && !(std::abs(value) <= kMaxDistortion)) {
       throw InvalidArgument(fmt::format(
@@ -115,6 +122,8 @@ CameraModel load_yaml_camera(const std::string& path) {
   int number = 0;
   while (std::getline(in, line)) {
     ++number;
+    // A UTF-8 byte order mark (some editors write one) is not part of the first key.
+    if (number == 1 && line.rfind("\xEF\xBB\xBF", 0) == 0) line.erase(0, 3);
     const std::string where = fmt::format("{}:{}", path, number);
     if (const auto hash = line.find('#'); hash != std::string::npos) line.erase(hash);
     const std::string text = trim(line);
@@ -149,8 +158,19 @@ CameraModel load_json_camera(const std::string& path) {
   buffer << in.rdbuf();
   const std::string text = buffer.str();
   nlohmann::json j;
+  // nlohmann keeps the last of two equal keys without a word; the YAML reader refuses them.
+  std::set<std::string> top_keys;
+  const auto refuse_duplicates = [&](int depth, nlohmann::json::parse_event_t event,
+                                     nlohmann::json& parsed) {
+    if (depth == 1 && event == nlohmann::json::parse_event_t::key &&
+        !top_keys.insert(parsed.get<std::string>()).second) {
+      throw InvalidArgument(
+          fmt::format("{}: field '{}' appears twice", path, parsed.get<std::string>()));
+    }
+    return true;
+  };
   try {
-    j = nlohmann::json::parse(text);
+    j = nlohmann::json::parse(text, refuse_duplicates);
   } catch (const nlohmann::json::parse_error& e) {
     const auto upto = std::min(text.size(), e.byte == 0 ? std::size_t{0} : e.byte - 1);
     const auto line =

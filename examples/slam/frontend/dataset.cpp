@@ -77,6 +77,17 @@ cv::Mat decode_image(const std::string& path, int flags, const std::string& what
   return image;
 }
 
+/// The bit depth of a PNG's samples (IHDR), 0 for another format.
+int png_bit_depth(const std::string& path) {
+  static constexpr unsigned char kPng[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
+  std::ifstream in(path, std::ios::binary);
+  unsigned char head[25] = {};
+  in.read(reinterpret_cast<char*>(head), sizeof head);
+  if (in.gcount() < static_cast<std::streamsize>(sizeof head) || !std::equal(kPng, kPng + 8, head))
+    return 0;
+  return head[24];  // signature 8, chunk length 4, "IHDR" 4, width 4, height 4, then bit depth
+}
+
 std::string colour_name(const std::string& path, const ListedImage& image) {
   return fmt::format("colour image '{}' (rgb.txt:{})", path, image.line);
 }
@@ -190,6 +201,13 @@ RgbdImages read_frame_images(const RgbdSequence& sequence, Eigen::Index index,
   require_readable(rgb_path, rgb_label);
   require_readable(depth_path, depth_label);
   RgbdImages images;
+  // IMREAD_COLOR scales a 16-bit PNG to 8 bits without a word: a depth map listed in rgb.txt
+  // would be tracked as a colour image.
+  if (const int bits = png_bit_depth(rgb_path); bits > 8) {
+    throw InvalidArgument(fmt::format(
+        "{} is a {}-bit PNG, not an 8-bit colour image (a depth map listed in rgb.txt?)", rgb_label,
+        bits));
+  }
   images.bgr = decode_image(rgb_path, cv::IMREAD_COLOR, rgb_label);
   const cv::Mat raw_depth = decode_image(depth_path, cv::IMREAD_UNCHANGED, depth_label);
   if (raw_depth.type() != CV_16UC1) {
@@ -197,9 +215,8 @@ RgbdImages read_frame_images(const RgbdSequence& sequence, Eigen::Index index,
         "depth image '{}' (depth.txt:{}) is not 16-bit single channel", depth_path, f.depth.line));
   }
   if (raw_depth.size() != images.bgr.size()) {
-    throw InvalidArgument(fmt::format("depth image '{}' is {}x{}, its colour image '{}' {}x{}",
-                                      depth_path, raw_depth.cols, raw_depth.rows, rgb_path,
-                                      images.bgr.cols, images.bgr.rows));
+    throw InvalidArgument(fmt::format("{} is {}x{}, its {} {}x{}", depth_label, raw_depth.cols,
+                                      raw_depth.rows, rgb_label, images.bgr.cols, images.bgr.rows));
   }
   raw_depth.convertTo(images.depth_m, CV_32F, 1.0 / depth_factor);
   return images;

@@ -73,9 +73,10 @@ void add_options(CLI::App& app, CommandOptions& o) {
   app.add_option("--person-dir", c.scenario.person_dir,
                  "person cut-out (rgb.png, mask.png, depth.png)")
       ->capture_default_str();
-  app.add_option("--person-depth", c.scenario.depth_m, "median depth of the person [m]")
+  // A depth sensor's range, wide: 1e-300 m or 1e300 m ran, on a person scaled to nothing.
+  app.add_option("--person-depth", c.scenario.depth_m, "median depth of the person [m], 0.2 to 20")
       ->capture_default_str()
-      ->check(examples::positive_number());
+      ->check(CLI::Range(0.2, 20.0));
   app.add_option("--person-start", c.scenario.start_x_px, "left edge of the person in frame 0 [px]")
       ->capture_default_str();
   app.add_option("--person-speed", c.scenario.speed_px_per_frame,
