@@ -574,6 +574,27 @@ TEST_CASE("bad input: an image that cannot be decoded mid-run keeps the frames b
   CHECK(poses == 5);
 }
 
+TEST_CASE("bad input: a rerun into the same --out leaves none of the earlier run's figures",
+          "[bad_inputs][hbos_slam]") {
+  const fs::path dir = scratch("slam_stale");
+  const fs::path seq = copy_sequence(dir, 8);
+  const fs::path out = dir / "out";
+  const std::vector<std::string> args = {"--dataset", seq.string(), "--quiet",
+                                         "--out",     out.string(), "--scenario",
+                                         "static",    "--mask",     "none"};
+  REQUIRE(run(dir, kSlam, args).exit_code == 0);
+  REQUIRE(fs::exists(out / "ate_over_time.png"));
+  // Without ground truth the second run draws no plots: the first run's must not stay beside
+  // its trajectory as though they were its own.
+  fs::remove(seq / "groundtruth.txt");
+  const Run r = run(dir, kSlam, args);
+  CHECK(r.exit_code == 0);
+  CHECK_THAT(r.out, Contains("removed") && Contains("ate_over_time.png"));
+  CHECK_FALSE(fs::exists(out / "ate_over_time.png"));
+  CHECK_FALSE(fs::exists(out / "top_view.png"));
+  CHECK(fs::exists(out / "trajectory.txt"));
+}
+
 TEST_CASE("bad input: colour images without a depth image are skipped with a warning",
           "[bad_inputs][hbos_slam]") {
   const fs::path dir = scratch("slam_unpaired");

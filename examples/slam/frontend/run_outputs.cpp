@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 #include <hbos/version.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 
@@ -160,6 +161,25 @@ std::vector<std::string> write_run_outputs(const std::string& dir, const RunResu
     }
   }
   return written;
+}
+
+std::vector<std::string> remove_stale_outputs(const std::string& dir,
+                                              const std::vector<std::string>& written) {
+  namespace fs = std::filesystem;
+  // Every file a run may or may not write (trajectory.txt, stats.csv and summary.json it always
+  // writes).
+  static const char* const kOptional[] = {"matches.png",       "residual_histogram.png",
+                                          "ate_over_time.png", "rpe_over_time.png",
+                                          "top_view.png",      "map.json",
+                                          "map_frames.csv"};
+  std::vector<std::string> removed;
+  for (const char* name : kOptional) {
+    const fs::path p = fs::path(dir) / name;
+    if (std::find(written.begin(), written.end(), p.string()) != written.end()) continue;
+    std::error_code error;
+    if (fs::is_regular_file(p, error) && fs::remove(p, error)) removed.push_back(p.string());
+  }
+  return removed;
 }
 
 }  // namespace hbos::slam

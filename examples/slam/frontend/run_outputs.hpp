@@ -32,4 +32,10 @@ std::vector<std::string> write_run_outputs(const std::string& dir, const RunResu
                                            const Config& config, const std::string& camera_name,
                                            const Trajectory* groundtruth);
 
+/// Removes from `dir` the outputs a run of hbos-slam can write (figures, plots, the map's
+/// reports) that are not among `written`: left from an earlier run into the same folder, they
+/// would sit beside this run's results as though they were its own. Returns the paths removed.
+std::vector<std::string> remove_stale_outputs(const std::string& dir,
+                                              const std::vector<std::string>& written);
+
 }  // namespace hbos::slam

@@ -267,15 +267,15 @@ int run_single(const CommandOptions& o, const CameraModel& camera, const RgbdSeq
       t.mean_mask_us / 1000.0, t.frames_tracked, t.frames);
   if (map_run) out << map_summary_text(*map_run);
   try {
-    for (const std::string& path :
-         write_run_outputs(config.output.dir, run, config, camera.name, groundtruth)) {
-      out << "wrote " << path << "\n";
-    }
+    std::vector<std::string> written =
+        write_run_outputs(config.output.dir, run, config, camera.name, groundtruth);
     if (map_run) {
-      for (const std::string& path : write_map_outputs(config.output.dir, *map_run)) {
-        out << "wrote " << path << "\n";
-      }
+      for (std::string& path : write_map_outputs(config.output.dir, *map_run))
+        written.push_back(std::move(path));
     }
+    for (const std::string& path : written) out << "wrote " << path << "\n";
+    for (const std::string& path : remove_stale_outputs(config.output.dir, written))
+      out << "removed " << path << " (an earlier run's; this run did not write it)\n";
   } catch (const std::runtime_error& e) {
     err << "hbos-slam: error: " << e.what() << "\n";
     return interrupted ? kSlamInterrupted : kSlamOutputError;
