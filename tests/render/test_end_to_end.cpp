@@ -1,6 +1,7 @@
 // A short scenario renders end to end into a TUM folder; written twice it is the same bytes.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <csignal>
 #include <filesystem>
 #include <fstream>
@@ -12,6 +13,8 @@
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 
+#include "render/textures.hpp"
+#include "render/trajectory.hpp"
 #include "render/writer.hpp"
 
 using namespace hbos::render;
@@ -189,4 +192,34 @@ TEST_CASE("a stop request between frames leaves no output and no temporary folde
                     Catch::Contains("interrupted after 2 of 5 frames"));
   CHECK_FALSE(fs::exists(out));
   CHECK_FALSE(fs::exists(out.string() + ".tmp"));
+}
+
+TEST_CASE("a repeated ground-truth stamp: the real file's near twin is kept, a far one refused") {
+  const fs::path dir = scratch("repeated_stamp");
+  fs::create_directories(dir);
+  // The real fr3/walking_static ground truth repeats 1341846251.4587 with poses 0.5 mm apart.
+  const auto real = read_tum_trajectory(default_data_dir() / "trajectories" /
+                                        "fr3_walking_static_groundtruth.txt");
+  CHECK(std::adjacent_find(real.begin(), real.end(), [](const auto& a, const auto& b) {
+          return a.stamp == b.stamp;
+        }) == real.end());
+  const fs::path far = dir / "far.txt";
+  std::ofstream(far)
+      << "1.0 0 0 0 0 0 0 1\n2.0 0 0 0 0 0 0 1\n2.0 0.5 0 0 0 0 0 1\n3.0 0 0 0 0 0 0 1\n";
+  CHECK_THROWS_WITH(read_tum_trajectory(far),
+                    Catch::Contains("far.txt:3: timestamp 2.000000 repeats with a pose 50.0"));
+  fs::remove_all(dir);
+}
+
+TEST_CASE("a truncated texture is refused, not rendered with libjpeg's grey rows") {
+  const fs::path dir = scratch("truncated_texture");
+  fs::create_directories(dir / "textures");
+  for (const auto& entry : fs::directory_iterator(default_data_dir() / "textures"))
+    fs::copy_file(entry.path(), dir / "textures" / entry.path().filename());
+  const fs::path texture = dir / "textures" / "slambook2_ch11_3.jpg";
+  const std::string bytes = slurp(texture);
+  std::ofstream(texture, std::ios::binary | std::ios::trunc) << bytes.substr(0, bytes.size() / 2);
+  CHECK_THROWS_WITH(TextureLibrary(dir),
+                    Catch::Contains("slambook2_ch11_3.jpg is a truncated JPEG"));
+  fs::remove_all(dir);
 }

@@ -1,5 +1,7 @@
 #include "render/textures.hpp"
 
+#include <fstream>
+
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
@@ -17,6 +19,17 @@ namespace {
 
 cv::Mat load(const std::filesystem::path& dir, const std::string& file) {
   const auto path = dir / "textures" / file;
+  // libjpeg decodes a truncated JPEG with a warning and grey rows: the room would be rendered
+  // with them, every frame, without a word. A complete JPEG ends with its end-of-image marker.
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
+  if (in && in.tellg() >= 2) {
+    in.seekg(-2, std::ios::end);
+    unsigned char tail[2] = {0, 0};
+    in.read(reinterpret_cast<char*>(tail), 2);
+    if (tail[0] != 0xFF || tail[1] != 0xD9)
+      throw InputError("texture image " + path.string() +
+                       " is a truncated JPEG (no end-of-image marker FF D9)");
+  }
   cv::Mat m = cv::imread(path.string(), cv::IMREAD_COLOR);
   if (m.empty()) throw InputError("cannot read texture image " + path.string());
   return m;

@@ -37,7 +37,23 @@ std::vector<StampedPose> read_tum_trajectory(const std::filesystem::path& file) 
       throw InputError(file.string() + ":" + std::to_string(line_no) + ": timestamp " +
                        std::to_string(v[0]) + " is before the previous one");
     }
-    if (!out.empty() && v[0] == out.back().stamp) continue;
+    if (!out.empty() && v[0] == out.back().stamp) {
+      // The real fr3/walking_static ground truth repeats one stamp with poses 0.5 mm apart: the
+      // first is kept (the rendered sequences depend on it). Two poses further apart under one
+      // stamp are two different claims about the camera, and neither can be chosen.
+      const Eigen::Isometry3d& kept = out.back().pose;
+      const double apart = (kept.translation() - Eigen::Vector3d(v[1], v[2], v[3])).norm();
+      const double angle =
+          Eigen::AngleAxisd(kept.linear().transpose() * q.normalized().toRotationMatrix()).angle();
+      if (apart > 0.01 || angle > 1.0 * M_PI / 180.0) {
+        throw InputError(file.string() + ":" + std::to_string(line_no) + ": timestamp " +
+                         std::to_string(v[0]) + " repeats with a pose " +
+                         std::to_string(apart * 100.0) + " cm and " +
+                         std::to_string(angle * 180.0 / M_PI) +
+                         " deg from the earlier one (more than 1 cm or 1 deg apart)");
+      }
+      continue;
+    }
     StampedPose p;
     p.stamp = v[0];
     p.pose.linear() = q.normalized().toRotationMatrix();
