@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <csignal>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -42,14 +43,19 @@ fs::path scratch(const std::string& name) {
   return p;
 }
 
+// The walking_static scenario, `frames` long, with `seed`.
+SequenceOptions walking_static(int frames, std::uint64_t seed) {
+  SequenceOptions o;
+  o.scenario = "walking_static";
+  o.frames = frames;
+  o.seed = seed;
+  return o;
+}
+
 }  // namespace
 
 TEST_CASE("a 30-frame scenario renders to a complete TUM folder") {
-  SequenceOptions o;
-  o.scenario = "walking_static";
-  o.frames = 30;
-  o.seed = 5;
-  SequenceRenderer r(o);
+  SequenceRenderer r(walking_static(30, 5));
   const fs::path out = scratch("e2e");
   int calls = 0;
   const WriteStats s = write_sequence(r, out, false, [&](int, int) { ++calls; });
@@ -139,11 +145,7 @@ TEST_CASE("the same scenario and seed write the same bytes, file for file") {
 }
 
 TEST_CASE("overwriting replaces only a previous output, never other files or the current folder") {
-  SequenceOptions o;
-  o.scenario = "walking_static";
-  o.frames = 2;
-  o.seed = 1;
-  SequenceRenderer r(o);
+  SequenceRenderer r(walking_static(2, 1));
   const fs::path dir = scratch("overwrite_guard");
   fs::create_directories(dir);
   // A folder of the user's own files: kept, whatever --overwrite says.
@@ -177,11 +179,7 @@ TEST_CASE("overwriting replaces only a previous output, never other files or the
 }
 
 TEST_CASE("a stop request between frames leaves no output and no temporary folder") {
-  SequenceOptions o;
-  o.scenario = "walking_static";
-  o.frames = 5;
-  o.seed = 1;
-  SequenceRenderer r(o);
+  SequenceRenderer r(walking_static(5, 1));
   const fs::path out = scratch("interrupted");
   volatile std::sig_atomic_t stop = 0;
   // Ctrl-C arrives while the third frame is written.
