@@ -11,6 +11,7 @@
 
 #include <map>
 #include <string>
+#include <type_traits>
 
 #include "../tests/support/synthetic_scene.hpp"
 
@@ -40,12 +41,25 @@ void fill(const hbos_test::Scene& scene, hbos::Matchesd& m, int flag_every = 0) 
           scene.on_dynamic_mask(i) || (flag_every > 0 && i % flag_every == 0));
 }
 
+/// The same frame in single precision, as ORB-SLAM2's float keypoints give it.
+void fill(const hbos_test::Scene& scene, hbos::Matches<float>& m) {
+  m.clear();
+  for (Eigen::Index i = 0; i < scene.size(); ++i)
+    m.add(scene.predicted.col(i).cast<float>(), scene.observed.col(i).cast<float>(),
+          static_cast<float>(scene.sigma(i)), scene.on_dynamic_mask(i));
+}
+
+template <class Scalar = double>
 void run_single(benchmark::State& state, const hbos::ScreenStrategy& strategy, int flag_every = 0) {
   const int n = static_cast<int>(state.range(0));
   const hbos_test::Scene& scene = scene_of(n);
-  hbos::Matchesd matches;
-  fill(scene, matches, flag_every);
-  hbos::ReprojectionScreend screen(strategy);
+  hbos::Matches<Scalar> matches;
+  if constexpr (std::is_same_v<Scalar, double>) {
+    fill(scene, matches, flag_every);
+  } else {
+    fill(scene, matches);
+  }
+  hbos::ReprojectionScreen<Scalar> screen(strategy);
   screen.reserve(n);
   screen.screen(matches);  // warm-up
   for (auto _ : state) {
@@ -106,6 +120,9 @@ void BM_fill_matches_assign(benchmark::State& state) {
 }
 
 void BM_hbos_default(benchmark::State& s) { run_single(s, hbos::HbosScreen{}); }
+// The default and chi^2 in single precision (ReprojectionScreen<float>, the README's example).
+void BM_hbos_default_float(benchmark::State& s) { run_single<float>(s, hbos::HbosScreen{}); }
+void BM_chi2_float(benchmark::State& s) { run_single<float>(s, hbos::ChiSquareGate{}); }
 // The default without its last pass (the affine field refitted on the matches that look static):
 // what that pass costs (docs/benchmarks.md, stop 26; it is kept for its static loss).
 void BM_hbos_norefit(benchmark::State& s) {
@@ -136,11 +153,13 @@ void BM_iterated_chi2(benchmark::State& s) { run_iterated(s, hbos::ChiSquareGate
 BENCHMARK(BM_fill_matches) HBOS_SIZES;
 BENCHMARK(BM_fill_matches_assign) HBOS_SIZES;
 BENCHMARK(BM_hbos_default) HBOS_SIZES;
+BENCHMARK(BM_hbos_default_float) HBOS_SIZES;
 BENCHMARK(BM_hbos_norefit) HBOS_SIZES;
 BENCHMARK(BM_hbos_probation) HBOS_SIZES;
 BENCHMARK(BM_hbos_probation_consensus) HBOS_SIZES;
 BENCHMARK(BM_hbos_paper) HBOS_SIZES;
 BENCHMARK(BM_chi2) HBOS_SIZES;
+BENCHMARK(BM_chi2_float) HBOS_SIZES;
 BENCHMARK(BM_fixed) HBOS_SIZES;
 BENCHMARK(BM_quantile) HBOS_SIZES;
 BENCHMARK(BM_mad) HBOS_SIZES;
