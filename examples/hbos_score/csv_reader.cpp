@@ -193,6 +193,14 @@ class Parser {
                      "blank line between rows (only blank lines at the end are ignored)");
     }
     if (first_) {
+      // A file whose lines end in CR alone reads as one line with the rows inside it, and was
+      // then reported as "no data rows after the header".
+      if (const auto cr = line.find('\r');
+          cr != std::string_view::npos && line.find('"') == std::string_view::npos) {
+        throw CsvError(source_, line_no_, cr + 1,
+                       "a carriage return inside the first line: lines that end in CR alone (as "
+                       "classic Mac OS wrote them) are not read; convert them to LF or CRLF");
+      }
       first_ = false;
       if (start_table(line)) return;
     }

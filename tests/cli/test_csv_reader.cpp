@@ -247,6 +247,8 @@ TEST_CASE("malformed input is reported at its line and column", "[csv][errors]")
   require_error("a,b\n1,--2\n", 2, 3, "is not a number");
   require_error("a,b\n1,+-2\n", 2, 3, "is not a number");
   require_error("a,b\n1,2\r3\n", 2, 3, "\"2\\r3\" is not a number");  // a lone CR is no line end
+  // A whole file of CR-only line ends is one line: said so, not "no data rows".
+  require_error("a,b\r1,2\r3,4\r", 1, 4, "lines that end in CR alone");
   require_error("a,b\n1,NaN\n", 2, 3,
                 "\"NaN\" is not a finite number (field 2, \"b\"); NaN and infinity");
   require_error("a,b\n-inf,1\n", 2, 1, "\"-inf\" is not a finite number (field 1, \"a\")");
