@@ -2,12 +2,16 @@
 
 #include <time.h>
 
+#include <atomic>
+
 namespace hbos::examples {
 namespace {
 
 volatile std::sig_atomic_t g_stop = 0;
-// When the first signal came [ns, CLOCK_MONOTONIC]; 0: none yet. Written by the handler alone.
-volatile long long g_first_signal_ns = 0;
+// When the first signal came [ns, CLOCK_MONOTONIC]; 0: none yet. Written by the handler alone;
+// a handler may touch only lock-free atomics (and volatile sig_atomic_t, too narrow for this).
+std::atomic<long long> g_first_signal_ns{0};
+static_assert(std::atomic<long long>::is_always_lock_free);
 // A second signal this soon after the first is the same request delivered twice: coreutils'
 // `timeout` signals the process and then its whole process group.
 constexpr long long kSameRequestNs = 500'000'000;
@@ -16,12 +20,13 @@ extern "C" void hbos_request_stop_on_signal(int signal_number) {
   timespec now{};
   ::clock_gettime(CLOCK_MONOTONIC, &now);
   const long long ns = static_cast<long long>(now.tv_sec) * 1'000'000'000LL + now.tv_nsec;
-  if (g_first_signal_ns == 0) {
-    g_first_signal_ns = ns > 0 ? ns : 1;
+  const long long first = g_first_signal_ns.load(std::memory_order_relaxed);
+  if (first == 0) {
+    g_first_signal_ns.store(ns > 0 ? ns : 1, std::memory_order_relaxed);
     g_stop = 1;
     return;
   }
-  if (ns - g_first_signal_ns < kSameRequestNs) return;
+  if (ns - first < kSameRequestNs) return;
   // A second request: end the process as the signal does by default (blocked in this handler,
   // it is delivered as soon as the handler returns).
   ::signal(signal_number, SIG_DFL);
@@ -32,7 +37,7 @@ extern "C" void hbos_request_stop_on_signal(int signal_number) {
 
 StopOnSignal::StopOnSignal() {
   g_stop = 0;
-  g_first_signal_ns = 0;
+  g_first_signal_ns.store(0, std::memory_order_relaxed);
   struct sigaction action {};
   action.sa_handler = &hbos_request_stop_on_signal;
   sigemptyset(&action.sa_mask);
