@@ -24,8 +24,9 @@ void check_weights_size(cv::dnn::Net& net, const std::string& weights) {
   std::int32_t version[3] = {0, 0, 0};
   in.read(reinterpret_cast<char*>(version), sizeof version);
   const std::uintmax_t bytes = std::filesystem::file_size(weights);
-  const bool long_seen =
-      version[0] * 10 + version[1] >= 2 && version[0] < 1000 && version[1] < 1000;
+  // Darknet's own test, in 64 bits: a damaged header's numbers must not overflow it.
+  const std::int64_t major = version[0], minor = version[1];
+  const bool long_seen = major * 10 + minor >= 2 && major < 1000 && minor < 1000;
   const std::uintmax_t header = 12 + (long_seen ? 8 : 4);
   std::uintmax_t needed = 0;
   for (const std::string& name : net.getLayerNames()) {
