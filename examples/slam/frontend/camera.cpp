@@ -96,8 +96,8 @@ CameraModel build_camera(const std::string& name,
           "{}: field '{}' = {:g} px is not a plausible focal length (legal: [1, 1e6] px)", where,
           key, value));
     }
-    // Below 1 a raw depth unit would be longer than a metre (a 16-bit map then reaches past the
-    // Moon); 1e-300 made every depth 1e300 m and the run went on.
+    // Below 1 a raw depth unit would be longer than a metre (a 16-bit map would then measure
+    // tens of kilometres); 1e-300 made every depth 1e300 m and the run went on.
     if (key == "depth_factor" && !(value >= 1.0 && value <= kMaxDepthFactor)) {
       throw InvalidArgument(fmt::format(
           "{}: field '{}' = {:g} must lie in [1, 1e9] (raw depth units per metre; TUM: 5000)",
