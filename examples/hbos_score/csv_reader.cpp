@@ -1,5 +1,7 @@
 #include "csv_reader.hpp"
 
+#include "common/shown_text.hpp"
+
 #include <cerrno>
 #include <charconv>
 #include <cmath>
@@ -39,27 +41,7 @@ struct Cell {
 bool is_blank(char c, char delimiter) { return c == ' ' || (c == '\t' && delimiter != '\t'); }
 
 /// A cell's text as it should appear in a message: quoted, control bytes escaped, long text cut.
-std::string shown(std::string_view text) {
-  constexpr std::size_t kMax = 40;
-  std::string out = "\"";
-  for (std::size_t i = 0; i < text.size() && i < kMax; ++i) {
-    const auto c = static_cast<unsigned char>(text[i]);
-    if (c == '\r') {
-      out += "\\r";
-    } else if (c == '"' || c == '\\') {
-      out += '\\';
-      out += static_cast<char>(c);
-    } else if (c < 0x20 || c == 0x7f) {
-      char hex[8];
-      std::snprintf(hex, sizeof hex, "\\x%02x", static_cast<unsigned>(c));
-      out += hex;
-    } else {
-      out += static_cast<char>(c);
-    }
-  }
-  if (text.size() > kMax) out += "...";
-  return out + "\"";
-}
+std::string shown(std::string_view text) { return hbos::examples::shown_text(text); }
 
 /// A quoted cell's content with `""` turned back into `"`.
 std::string unquote(const Cell& cell) {

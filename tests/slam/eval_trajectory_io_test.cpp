@@ -77,7 +77,7 @@ TEST_CASE("TUM reader rejects malformed lines naming file:line, field and value"
   // A byte order mark is shown, not printed invisibly before a stamp that looks right.
   CHECK_THROWS_WITH(parse("\xEF\xBB\xBF"
                           "1.0 0 0 0 0 0 0 1\n"),
-                    Contains("field 't' is not a number: '\\xEF\\xBB\\xBF1.0'"));
+                    Contains("field 't' is not a number: '\\xef\\xbb\\xbf1.0'"));
   // A 10 MB field makes a message of a line, not of 10 MB.
   const std::string huge(10'000'000, '7');
   try {
@@ -85,7 +85,7 @@ TEST_CASE("TUM reader rejects malformed lines naming file:line, field and value"
     FAIL("accepted");
   } catch (const hbos::InvalidArgument& e) {
     CHECK(std::string(e.what()).size() < 200);
-    CHECK_THAT(e.what(), Contains("... (10000001 bytes)"));
+    CHECK_THAT(e.what(), Contains("7777...'"));
   }
   CHECK_THROWS_WITH(parse("1.0 0 0 nan 0 0 0 1\n"),
                     Contains("est.txt:1: field 'tz' is not finite: 'nan'"));

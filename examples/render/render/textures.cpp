@@ -1,10 +1,14 @@
 #include "render/textures.hpp"
 
 #include <fstream>
+#include <iterator>
+#include <string>
+#include <vector>
 
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "common/image_encoding.hpp"
 #include "render/trajectory.hpp"
 
 #ifndef HBOS_RENDER_DATA_DIR
@@ -20,17 +24,13 @@ namespace {
 cv::Mat load(const std::filesystem::path& dir, const std::string& file) {
   const auto path = dir / "textures" / file;
   // libjpeg decodes a truncated JPEG with a warning and grey rows: the room would be rendered
-  // with them, every frame, without a word. A complete JPEG ends with its end-of-image marker.
-  std::ifstream in(path, std::ios::binary | std::ios::ate);
-  if (in && in.tellg() >= 2) {
-    in.seekg(-2, std::ios::end);
-    unsigned char tail[2] = {0, 0};
-    in.read(reinterpret_cast<char*>(tail), 2);
-    if (tail[0] != 0xFF || tail[1] != 0xD9)
-      throw InputError("texture image " + path.string() +
-                       " is a truncated JPEG (no end-of-image marker FF D9)");
-  }
-  cv::Mat m = cv::imread(path.string(), cv::IMREAD_COLOR);
+  // with them, every frame, without a word.
+  std::ifstream in(path, std::ios::binary);
+  const std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)),
+                                         std::istreambuf_iterator<char>());
+  if (const std::string why = examples::incomplete_encoding(bytes); !why.empty())
+    throw InputError("texture image " + path.string() + " " + why);
+  cv::Mat m = cv::imread(path.string(), cv::IMREAD_COLOR);  // as before: the same pixels
   if (m.empty()) throw InputError("cannot read texture image " + path.string());
   return m;
 }

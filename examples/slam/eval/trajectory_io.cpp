@@ -1,6 +1,7 @@
 #include "eval/trajectory_io.hpp"
 
 #include "common/atomic_file.hpp"
+#include "common/shown_text.hpp"
 
 #include <fmt/format.h>
 #include <hbos/error.hpp>
@@ -87,18 +88,9 @@ void require_readable_file(const std::string& path, const char* what) {
   detail::require(std::filesystem::exists(path, error), path, ": ", what, " does not exist");
 }
 
-// A field as a message shows it: bytes a terminal would not show (a byte order mark, a carriage
-// return) as \xHH, and at most 40 characters (a 10 MB field made a 10 MB message).
-std::string shown(std::string_view field) {
-  std::string text;
-  constexpr std::size_t kMaxShown = 40;
-  for (std::size_t k = 0; k < field.size() && k < kMaxShown; ++k) {
-    const auto byte = static_cast<unsigned char>(field[k]);
-    text += byte >= 0x20 && byte < 0x7F ? std::string(1, field[k]) : fmt::format("\\x{:02X}", byte);
-  }
-  if (field.size() > kMaxShown) text += fmt::format("... ({} bytes)", field.size());
-  return text;
-}
+// A field as a message shows it: quoted, cut at 40 characters, and a byte no number holds (a
+// byte order mark, a carriage return) escaped rather than printed as nothing.
+std::string shown(std::string_view field) { return examples::shown_text(field, '\'', true); }
 
 struct ParsedLine {
   Eigen::Index line = 0;
@@ -117,9 +109,9 @@ ParsedLine parse_pose_line(const std::vector<std::string_view>& fields, const st
   for (std::size_t k = 0; k < fields.size(); ++k) {
     double value = 0.0;
     detail::require(parse_double(fields[k], value), where, ": field '", kFieldNames[k],
-                    "' is not a number: '", shown(fields[k]), "'");
-    detail::require(std::isfinite(value), where, ": field '", kFieldNames[k], "' is not finite: '",
-                    shown(fields[k]), "'");
+                    "' is not a number: ", shown(fields[k]));
+    detail::require(std::isfinite(value), where, ": field '", kFieldNames[k],
+                    "' is not finite: ", shown(fields[k]));
     parsed.values[k] = value;
   }
   for (std::size_t k = 1; k <= 3; ++k) {
@@ -273,8 +265,8 @@ std::vector<double> read_frame_stamps(const std::string& path) {
     if (fields.empty() || fields.front().front() == '#') continue;
     double stamp = 0.0;
     detail::require(parse_double(fields.front(), stamp) && std::isfinite(stamp),
-                    location(path, line_number), ": frame stamp is not a finite number: '",
-                    shown(fields.front()), "'");
+                    location(path, line_number),
+                    ": frame stamp is not a finite number: ", shown(fields.front()));
     detail::require(std::abs(stamp) <= kMaxAbsStamp, location(path, line_number), ": frame stamp '",
                     fields.front(), "' is not a plausible time in seconds (|t| must be <= 1e12)");
     stamps.push_back(stamp);

@@ -1,5 +1,6 @@
 #include "frontend/dataset.hpp"
 
+#include "common/image_encoding.hpp"
 #include "eval/rpe.hpp"
 #include "eval/trajectory_io.hpp"
 
@@ -43,49 +44,23 @@ std::vector<unsigned char> read_bytes(const std::string& path, const std::string
   return bytes;
 }
 
-/// Why an encoded JPEG or PNG is incomplete, or empty when it is whole. OpenCV decodes a
-/// truncated JPEG (grey rows where data is missing) and only warns on stderr, so the ends are
-/// checked here: a JPEG must end with its EOI marker FF D9 (trailing padding of up to 64 bytes is
-/// tolerated), a PNG with its IEND chunk.
-std::string incomplete_encoding(const std::vector<unsigned char>& b) {
-  const std::size_t n = b.size();
-  if (n >= 3 && b[0] == 0xFF && b[1] == 0xD8 && b[2] == 0xFF) {
-    const std::size_t from = n > 66 ? n - 66 : 0;
-    for (std::size_t i = n - 1; i > from; --i) {
-      if (b[i - 1] == 0xFF && b[i] == 0xD9) return {};
-    }
-    return "is a truncated JPEG (no end-of-image marker FF D9)";
-  }
-  static constexpr unsigned char kPng[8] = {0x89, 'P', 'N', 'G', 0x0D, 0x0A, 0x1A, 0x0A};
-  if (n >= 8 && std::equal(kPng, kPng + 8, b.begin())) {
-    static constexpr unsigned char kIend[8] = {'I', 'E', 'N', 'D', 0xAE, 0x42, 0x60, 0x82};
-    if (n >= 8 + 12 && std::equal(kIend, kIend + 8, b.end() - 8)) return {};
-    return "is a truncated PNG (no IEND chunk at its end)";
-  }
-  return {};  // another format: left to OpenCV
-}
-
-/// Decodes an image file, refusing incomplete JPEG and PNG files.
-cv::Mat decode_image(const std::string& path, int flags, const std::string& what) {
+/// Decodes an image file, refusing incomplete JPEG and PNG files. `colour`: IMREAD_COLOR scales a
+/// 16-bit PNG to 8 bits without a word, so a depth map listed in rgb.txt is refused instead.
+cv::Mat decode_image(const std::string& path, int flags, const std::string& what,
+                     bool colour = false) {
   const std::vector<unsigned char> bytes = read_bytes(path, what);
   if (bytes.empty()) throw InvalidArgument(what + " is empty");
-  if (const std::string why = incomplete_encoding(bytes); !why.empty()) {
+  if (const std::string why = examples::incomplete_encoding(bytes); !why.empty()) {
     throw InvalidArgument(what + " " + why);
+  }
+  if (const int bits = examples::png_bit_depth(bytes); colour && bits > 8) {
+    throw InvalidArgument(fmt::format(
+        "{} is a {}-bit PNG, not an 8-bit colour image (a depth map listed in rgb.txt?)", what,
+        bits));
   }
   cv::Mat image = cv::imdecode(bytes, flags);
   if (image.empty()) throw InvalidArgument(what + " cannot be decoded as an image");
   return image;
-}
-
-/// The bit depth of a PNG's samples (IHDR), 0 for another format.
-int png_bit_depth(const std::string& path) {
-  static constexpr unsigned char kPng[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
-  std::ifstream in(path, std::ios::binary);
-  unsigned char head[25] = {};
-  in.read(reinterpret_cast<char*>(head), sizeof head);
-  if (in.gcount() < static_cast<std::streamsize>(sizeof head) || !std::equal(kPng, kPng + 8, head))
-    return 0;
-  return head[24];  // signature 8, chunk length 4, "IHDR" 4, width 4, height 4, then bit depth
 }
 
 std::string colour_name(const std::string& path, const ListedImage& image) {
@@ -201,14 +176,7 @@ RgbdImages read_frame_images(const RgbdSequence& sequence, Eigen::Index index,
   require_readable(rgb_path, rgb_label);
   require_readable(depth_path, depth_label);
   RgbdImages images;
-  // IMREAD_COLOR scales a 16-bit PNG to 8 bits without a word: a depth map listed in rgb.txt
-  // would be tracked as a colour image.
-  if (const int bits = png_bit_depth(rgb_path); bits > 8) {
-    throw InvalidArgument(fmt::format(
-        "{} is a {}-bit PNG, not an 8-bit colour image (a depth map listed in rgb.txt?)", rgb_label,
-        bits));
-  }
-  images.bgr = decode_image(rgb_path, cv::IMREAD_COLOR, rgb_label);
+  images.bgr = decode_image(rgb_path, cv::IMREAD_COLOR, rgb_label, /*colour=*/true);
   const cv::Mat raw_depth = decode_image(depth_path, cv::IMREAD_UNCHANGED, depth_label);
   if (raw_depth.type() != CV_16UC1) {
     throw InvalidArgument(fmt::format(
