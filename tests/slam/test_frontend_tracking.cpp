@@ -74,6 +74,18 @@ TEST_CASE("static pipeline: relative motion agrees with ground truth on 8 frames
   CHECK(o.run.totals.static_loss_share < 0.2);
 }
 
+TEST_CASE("a motion beyond the jump limit is not tracked: the frame keeps the prediction",
+          "[frontend][tracking]") {
+  // fr1/xyz's camera moves 10-15 mm per frame: a limit of 1 mm refuses every step, so no frame
+  // after the first is tracked and each repeats the last tracked motion (none: the identity).
+  hbos::slam::Config config;
+  config.jump_limit.max_m = 0.001;
+  const Outcome o = track_embedded(config, 5);
+  REQUIRE(o.run.poses.size() == 5);
+  CHECK(o.run.totals.frames_tracked == 1);
+  for (const auto& pose : o.run.poses) CHECK(pose.isApprox(Eigen::Isometry3d::Identity()));
+}
+
 TEST_CASE("person without mask: the default screen removes most of its matches",
           "[frontend][tracking][screen]") {
   // Measured on the first 12 frames (455 labelled person matches, 8 % of all): the default

@@ -1,17 +1,24 @@
-// The rough pose (frontend/rough_pose.hpp): PnP RANSAC, and its second consensus from the tracks
-// the screen mostly kept (RoughPoseConfig::history_consensus).
+// The rough pose (frontend/rough_pose.hpp): PnP RANSAC, its refit checked against its own
+// inliers, and its second consensus from the tracks the screen mostly kept
+// (RoughPoseConfig::history_consensus); the jump limit both trackers share.
 
 #include <catch2/catch.hpp>
 
+#include "frontend/camera.hpp"
 #include "frontend/config.hpp"
+#include "frontend/jump_limit.hpp"
 #include "frontend/outlier_share.hpp"
 #include "frontend/rough_pose.hpp"
 #include "frontend/tracker.hpp"
 
 #include <hbos/error.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <random>
+#include <sstream>
+#include <string>
 #include <vector>
 
 namespace {
@@ -92,7 +99,93 @@ std::vector<hbos::slam::OutlierShare> tracks_with_shares(const std::vector<doubl
   return out;
 }
 
+/// tests/data/rough_pose_refit (SOURCE.md there): one rendered frame pair's matches and the
+/// tracker's constant-velocity prediction for it.
+struct RecordedPair {
+  std::vector<Eigen::Vector3d> points;
+  std::vector<Eigen::Vector2d> observed;
+  Eigen::Isometry3d prediction = Eigen::Isometry3d::Identity();
+};
+
+RecordedPair recorded_refit_failure() {
+  const std::string dir = std::string(HBOS_TEST_DATA_DIR) + "/rough_pose_refit/";
+  RecordedPair r;
+  std::ifstream matches(dir + "walking_rpy_seed18_frame184.csv");
+  std::string line;
+  std::getline(matches, line);  // x,y,z,u,v
+  while (std::getline(matches, line)) {
+    std::replace(line.begin(), line.end(), ',', ' ');
+    std::istringstream row(line);
+    double x = 0, y = 0, z = 0, u = 0, v = 0;
+    row >> x >> y >> z >> u >> v;
+    r.points.emplace_back(x, y, z);
+    r.observed.emplace_back(u, v);
+  }
+  std::ifstream velocity(dir + "walking_rpy_seed18_frame184_velocity.txt");
+  Eigen::Matrix4d m;
+  for (int i = 0; i < 16; ++i) velocity >> m(i / 4, i % 4);
+  r.prediction.matrix() = m;
+  return r;
+}
+
 }  // namespace
+
+TEST_CASE("rough pose: a RANSAC refit that leaves its own inliers is no consensus",
+          "[frontend][rough_pose]") {
+  const RecordedPair pair = recorded_refit_failure();
+  REQUIRE(pair.points.size() == 411);
+  const hbos::PinholeCamerad camera = hbos::slam::camera_preset("tum3").pinhole();
+  hbos::slam::RoughPoseConfig unchecked;
+  unchecked.check_refit = false;
+  // The premise (OpenCV 4.6): solvePnPRansac's refit lands metres away from a motion of 3.4 mm.
+  const hbos::slam::RoughPose wild = hbos::slam::RoughPoseEstimator(unchecked, camera)
+                                         .estimate(pair.points, pair.observed, pair.prediction);
+  REQUIRE(wild.from_ransac);
+  REQUIRE(wild.T_cur_prev.translation().norm() > 1.0);
+  // Checked, the pose is refused and the prediction stays.
+  const hbos::slam::RoughPose checked = hbos::slam::RoughPoseEstimator({}, camera)
+                                            .estimate(pair.points, pair.observed, pair.prediction);
+  CHECK_FALSE(checked.from_ransac);
+  CHECK(checked.T_cur_prev.isApprox(pair.prediction));
+  // The jump limit would have refused it as well.
+  CHECK(hbos::slam::JumpLimit{}.exceeded_by(wild.T_cur_prev * pair.prediction.inverse()));
+}
+
+TEST_CASE("rough pose: the refit check leaves a sound consensus as it is",
+          "[frontend][rough_pose]") {
+  hbos::slam::RoughPoseConfig unchecked;
+  unchecked.check_refit = false;
+  for (const unsigned seed : {1U, 2U, 3U, 4U}) {
+    const TwoMotions s = two_motions(200, 60, seed);
+    const auto a = hbos::slam::RoughPoseEstimator({}, hbos::PinholeCamerad{})
+                       .estimate(s.points, s.observed, Eigen::Isometry3d::Identity());
+    const auto b = hbos::slam::RoughPoseEstimator(unchecked, hbos::PinholeCamerad{})
+                       .estimate(s.points, s.observed, Eigen::Isometry3d::Identity());
+    CAPTURE(seed);
+    CHECK(a.from_ransac);
+    CHECK(a.ransac_inliers == b.ransac_inliers);
+    CHECK(a.T_cur_prev.isApprox(b.T_cur_prev, 0.0));
+  }
+}
+
+TEST_CASE("jump limit: a step beyond either bound is refused and one within both is not",
+          "[frontend][rough_pose]") {
+  const hbos::slam::JumpLimit limit;  // 0.3 m, 30 deg
+  Eigen::Isometry3d step = Eigen::Isometry3d::Identity();
+  CHECK_FALSE(limit.exceeded_by(step));
+  step.translation() = Eigen::Vector3d(0.1, -0.2, 0.15);  // 0.27 m
+  CHECK_FALSE(limit.exceeded_by(step));
+  step.translation() = Eigen::Vector3d(0.2, -0.2, 0.15);  // 0.32 m
+  CHECK(limit.exceeded_by(step));
+  step.translation().setZero();
+  step.linear() = Eigen::AngleAxisd(29.0 * M_PI / 180.0, Eigen::Vector3d(1, 2, 3).normalized())
+                      .toRotationMatrix();
+  CHECK_FALSE(limit.exceeded_by(step));
+  step.linear() = Eigen::AngleAxisd(31.0 * M_PI / 180.0, Eigen::Vector3d(1, 2, 3).normalized())
+                      .toRotationMatrix();
+  CHECK(limit.exceeded_by(step));
+  CHECK(limit.exceeded_by(step.inverse()));  // backwards as far
+}
 
 TEST_CASE("rough pose: a track's static trust needs screenings that kept it",
           "[frontend][rough_pose]") {

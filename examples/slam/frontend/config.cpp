@@ -47,6 +47,10 @@ nlohmann::json to_json(const LeverageGuardConfig& guard) {
           {"bias_cell_px", guard.bias_cell_px}};
 }
 
+nlohmann::json to_json(const JumpLimit& limit) {
+  return {{"max_m", limit.max_m}, {"max_deg", limit.max_deg}};
+}
+
 const char* to_string(RoughPoseMethod method) {
   return method == RoughPoseMethod::kRansac ? "ransac" : "constant-velocity";
 }

@@ -3,6 +3,7 @@
 /// The one configuration of the mini-SLAM front end: plain defaulted fields, grouped by stage in
 /// the order the tracker runs them. Each stage is constructed with its own group only.
 
+#include "frontend/jump_limit.hpp"
 #include "frontend/map/map_config.hpp"
 
 #include <Eigen/Core>
@@ -114,6 +115,10 @@ struct RoughPoseConfig {
   double history_rejected_share = 0.5;
   /// the second RANSAC runs only when at least this share of the consensus is mostly rejected
   double history_trigger_share = 0.1;
+  /// cv::solvePnPRansac returns its inliers' refit; with this, a refit that no longer holds half
+  /// of those inliers within the threshold is no consensus and the fallback is taken
+  /// (docs/results.md, "A frame-to-frame pose that jumped 5 m").
+  bool check_refit = true;
 };
 
 /// The residual screen (hbos's reprojection screen or a baseline).
@@ -216,7 +221,8 @@ struct Config {
   ScreenStageConfig screen;
   LeverageGuardConfig guard;
   RefinementConfig refinement;
-  MapConfig map;  ///< the map tracker's own stages (frontend/map/map_config.hpp)
+  JumpLimit jump_limit;  ///< both trackers: a pose step beyond it is a failure, not motion
+  MapConfig map;         ///< the map tracker's own stages (frontend/map/map_config.hpp)
   OutputConfig output;
 };
 
@@ -226,6 +232,8 @@ struct Config {
 [[nodiscard]] MaskSource parse_mask_source(const std::string& name);
 /// The guard's settings as one object (run summaries and cache keys), or `false` when off.
 [[nodiscard]] nlohmann::json to_json(const LeverageGuardConfig& guard);
+/// The limit as one object (run summaries and cache keys).
+[[nodiscard]] nlohmann::json to_json(const JumpLimit& limit);
 /// `ransac`, `constant-velocity`.
 [[nodiscard]] const char* to_string(RoughPoseMethod method);
 [[nodiscard]] RoughPoseMethod parse_rough_pose_method(const std::string& name);

@@ -41,7 +41,8 @@ Tracker::Tracker(const Config& config, const CameraModel& camera)
       distance_reach_px_(std::max(mask_reach_px_, guard_.reach_px(config.mask.source))),
       keep_history_(frame_history_kept(config)),
       pass_history_(frame_history_wanted(config)),
-      forgetting_(config.map.history.forgetting) {
+      forgetting_(config.map.history.forgetting),
+      jump_limit_(config.jump_limit) {
   if (!(forgetting_ >= 0.0 && forgetting_ <= 1.0))
     throw InvalidArgument("history forgetting must lie in [0, 1], got " +
                           std::to_string(forgetting_));
@@ -102,14 +103,19 @@ TrackResult Tracker::track(const Frame& frame) {
 
   // "Tracked" is decided on the final pose, after RANSAC, the screen and the refinement: a
   // frame is tracked when at least min_matches_ screened matches reproject within ORB-SLAM2's
-  // chi-square gate under the refined pose. Otherwise (too few matches, a black or featureless
-  // frame, a pose no inlier set supports) the frame keeps the constant-velocity prediction:
+  // chi-square gate under the refined pose, and the motion stays within the jump limit.
+  // Otherwise (too few matches, a black or featureless frame, a pose no inlier set supports, a
+  // jump) the frame keeps the constant-velocity prediction:
   // its pose continues the last tracked motion, never a jump made up from noise.
   Eigen::Isometry3d T_cur_prev = velocity_;
   bool supported = false;
   if (stats.matches >= min_matches_) {
     // 4. Rough pose from the matches (PnP RANSAC; constant velocity as fallback).
-    const RoughPose rough = rough_pose_.estimate(points_prev, observed, velocity_, memory);
+    RoughPose rough = rough_pose_.estimate(points_prev, observed, velocity_, memory);
+    // A consensus that puts the camera further from the prediction than any camera moves in a
+    // frame is a wrong one: the prediction stays the rough pose (as in the map tracker).
+    if (rough.from_ransac && jump_limit_.exceeded_by(rough.T_cur_prev * velocity_.inverse()))
+      rough = RoughPose{velocity_};
     Eigen::Isometry3d T_candidate = rough.T_cur_prev;
     stats.rough_from_ransac = rough.from_ransac;
     stats.ransac_inliers = rough.ransac_inliers;
@@ -146,7 +152,10 @@ TrackResult Tracker::track(const Frame& frame) {
         const double r2 = (camera.project(p) - observed[i]).squaredNorm() / (sigma[i] * sigma[i]);
         support += r2 <= kChi2Gate ? 1 : 0;
       }
-      supported = support >= min_matches_ && T_candidate.matrix().allFinite();
+      // The rounds can run off too (screen -> refine -> re-screen on what the last pose kept):
+      // a motion no camera makes in a frame is not tracked, whatever it reprojects.
+      supported = support >= min_matches_ && T_candidate.matrix().allFinite() &&
+                  !jump_limit_.exceeded_by(T_candidate);
     }
     if (supported) T_cur_prev = T_candidate;
   }

@@ -119,6 +119,7 @@ class Tracker {
   bool keep_history_;         ///< the match chains' outlier shares are kept (frame_history_kept)
   bool pass_history_;         ///< the screen sees each match's chain's outlier share
   double forgetting_;
+  JumpLimit jump_limit_;  ///< a motion beyond it is not tracked; a rough pose beyond it not used
 
   std::optional<Features> previous_;
   /// per keypoint of previous_ (when keep_history_): the outlier share of its match chain

@@ -62,9 +62,7 @@ struct RelocalisationConfig {
   float ratio = 0.75f;                 ///< Lowe ratio of those matches (ORB-SLAM2: 0.75)
   double ransac_threshold_px = 2.447;  ///< [px at level 0] sqrt(5.991), ORB-SLAM2's PnP gate
   int ransac_iterations = 300;
-  int min_pnp_inliers = 20;    ///< PnP inliers to try the pose against the local map
-  double max_jump_m = 0.3;     ///< [m] frame-to-frame motion above this is a failure
-  double max_jump_deg = 30.0;  ///< [deg] likewise for rotation
+  int min_pnp_inliers = 20;  ///< PnP inliers to try the pose against the local map
 };
 
 /// The screen's memory per map point (see screening_history.hpp).

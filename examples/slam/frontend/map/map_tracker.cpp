@@ -54,10 +54,6 @@ Eigen::Isometry3d no_pose() {
   return T;
 }
 
-double angle_deg(const Eigen::Matrix3d& R) {
-  return Eigen::AngleAxisd(R).angle() * 180.0 / 3.14159265358979323846;
-}
-
 RoughPoseConfig map_rough_pose(const Config& config) {
   RoughPoseConfig c = config.rough_pose;
   c.ransac_iterations = config.map.rough_pose_iterations;
@@ -255,9 +251,7 @@ Eigen::Isometry3d MapTracker::rough_pose(const Features& current, const std::vec
   // A consensus far from the prediction is a wrong one (e.g. a person holding a third of the
   // matches): no camera jumps that far in a frame, so the prediction stays the rough pose.
   const Eigen::Isometry3d step = rough.T_cur_prev * guess.inverse();
-  const RelocalisationConfig& r = config_.map.relocalisation;
-  if (!rough.from_ransac || step.translation().norm() > r.max_jump_m ||
-      angle_deg(step.linear()) > r.max_jump_deg) {
+  if (!rough.from_ransac || config_.jump_limit.exceeded_by(step)) {
     return guess;
   }
   stats.rough_from_ransac = true;
@@ -375,8 +369,7 @@ void MapTracker::finish(const Frame& frame, Features current, const std::vector<
   bool ok = survivors >= (after_relocalisation ? r.min_inliers_relocalised : r.min_inliers);
   // A jump: frame-to-frame motion no camera makes in 1/30 s means a wrong pose, not motion.
   const Eigen::Isometry3d step = T_camera_world * last_T_camera_world_.inverse();
-  if (report_.source != TrackSource::kRelocalised &&
-      (step.translation().norm() > r.max_jump_m || angle_deg(step.linear()) > r.max_jump_deg)) {
+  if (report_.source != TrackSource::kRelocalised && config_.jump_limit.exceeded_by(step)) {
     ok = false;
   }
   if (!ok) {
