@@ -64,7 +64,7 @@ bool RoughPoseEstimator::consensus(const std::vector<cv::Point3d>& object,
   // solvePnPRansac returns its inliers' refit (Levenberg-Marquardt), not the pose that found
   // them, and on a distant, shallow scene that refit can leave the consensus altogether: the
   // inliers it reports no longer lie within the threshold of the pose it returns (docs/results.md,
-  // "A RANSAC pose that leaves its own inliers"). Such a pose is no consensus.
+  // "A frame-to-frame pose that jumped 5 m"). Such a pose is no consensus.
   if (config_.check_refit && !holds_its_inliers(*o, *i, inliers, found)) return false;
   pose = found;
   return true;

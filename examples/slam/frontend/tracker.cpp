@@ -152,8 +152,9 @@ TrackResult Tracker::track(const Frame& frame) {
         const double r2 = (camera.project(p) - observed[i]).squaredNorm() / (sigma[i] * sigma[i]);
         support += r2 <= kChi2Gate ? 1 : 0;
       }
-      // The rounds can run off too (screen -> refine -> re-screen on what the last pose kept):
-      // a motion no camera makes in a frame is not tracked, whatever it reprojects.
+      // The rounds start from the rough pose but are not bound to it (each re-screens on what the
+      // last pose kept): a motion no camera makes in a frame is not tracked, whatever it
+      // reprojects.
       supported = support >= min_matches_ && T_candidate.matrix().allFinite() &&
                   !jump_limit_.exceeded_by(T_candidate);
     }
