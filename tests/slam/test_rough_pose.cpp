@@ -137,18 +137,22 @@ TEST_CASE("rough pose: a RANSAC refit that leaves its own inliers is no consensu
   const hbos::PinholeCamerad camera = hbos::slam::camera_preset("tum3").pinhole();
   hbos::slam::RoughPoseConfig unchecked;
   unchecked.check_refit = false;
+  const hbos::slam::JumpLimit no_limit{1e9, 360.0};
   // The premise (OpenCV 4.6): solvePnPRansac's refit lands metres away from a motion of 3.4 mm.
-  const hbos::slam::RoughPose wild = hbos::slam::RoughPoseEstimator(unchecked, camera)
+  const hbos::slam::RoughPose wild = hbos::slam::RoughPoseEstimator(unchecked, camera, no_limit)
                                          .estimate(pair.points, pair.observed, pair.prediction);
   REQUIRE(wild.from_ransac);
   REQUIRE(wild.T_cur_prev.translation().norm() > 1.0);
   // Checked, the pose is refused and the prediction stays.
-  const hbos::slam::RoughPose checked = hbos::slam::RoughPoseEstimator({}, camera)
+  const hbos::slam::RoughPose checked = hbos::slam::RoughPoseEstimator({}, camera, no_limit)
                                             .estimate(pair.points, pair.observed, pair.prediction);
   CHECK_FALSE(checked.from_ransac);
   CHECK(checked.T_cur_prev.isApprox(pair.prediction));
-  // The jump limit would have refused it as well.
-  CHECK(hbos::slam::JumpLimit{}.exceeded_by(wild.T_cur_prev * pair.prediction.inverse()));
+  // Unchecked, the jump limit (0.3 m, 30 deg from the prediction) refuses it as well.
+  const hbos::slam::RoughPose limited = hbos::slam::RoughPoseEstimator(unchecked, camera)
+                                            .estimate(pair.points, pair.observed, pair.prediction);
+  CHECK_FALSE(limited.from_ransac);
+  CHECK(limited.T_cur_prev.isApprox(pair.prediction));
 }
 
 TEST_CASE("rough pose: the refit check leaves a sound consensus as it is",

@@ -8,8 +8,9 @@
 
 namespace hbos::slam {
 
-RoughPoseEstimator::RoughPoseEstimator(const RoughPoseConfig& config, hbos::PinholeCamerad camera)
-    : config_(config), camera_(camera) {
+RoughPoseEstimator::RoughPoseEstimator(const RoughPoseConfig& config, hbos::PinholeCamerad camera,
+                                       JumpLimit jump_limit)
+    : config_(config), camera_(camera), jump_limit_(jump_limit) {
   if (!(config_.ransac_threshold_px > 0.0) || config_.ransac_iterations < 1 ||
       !(config_.ransac_confidence > 0.0 && config_.ransac_confidence < 1.0) ||
       config_.min_inliers < 4) {
@@ -107,6 +108,18 @@ RoughPose RoughPoseEstimator::estimate(const std::vector<Eigen::Vector3d>& point
                                        const std::vector<Eigen::Vector2d>& observed,
                                        const Eigen::Isometry3d& constant_velocity,
                                        const std::vector<OutlierShare>& memory) const {
+  const RoughPose pose = best_consensus(points_prev, observed, constant_velocity, memory);
+  // A consensus that puts the camera further from the prediction than any camera moves in a
+  // frame is a wrong one (e.g. a person holding a third of the matches): the prediction stays.
+  if (pose.from_ransac && jump_limit_.exceeded_by(pose.T_cur_prev * constant_velocity.inverse()))
+    return RoughPose{constant_velocity};
+  return pose;
+}
+
+RoughPose RoughPoseEstimator::best_consensus(const std::vector<Eigen::Vector3d>& points_prev,
+                                             const std::vector<Eigen::Vector2d>& observed,
+                                             const Eigen::Isometry3d& constant_velocity,
+                                             const std::vector<OutlierShare>& memory) const {
   RoughPose pose;
   pose.T_cur_prev = constant_velocity;
   if (config_.method == RoughPoseMethod::kConstantVelocity ||

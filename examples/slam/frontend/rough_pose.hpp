@@ -6,6 +6,7 @@
 /// option, measured in docs/slam_demo.md).
 
 #include "frontend/config.hpp"
+#include "frontend/jump_limit.hpp"
 #include "frontend/outlier_share.hpp"
 
 #include <Eigen/Core>
@@ -35,11 +36,14 @@ struct RoughPose {
 
 class RoughPoseEstimator {
  public:
-  /// Throws hbos::InvalidArgument on settings out of range.
-  RoughPoseEstimator(const RoughPoseConfig& config, hbos::PinholeCamerad camera);
+  /// Throws hbos::InvalidArgument on settings out of range. A consensus further than
+  /// `jump_limit` from the prediction is refused for the prediction.
+  RoughPoseEstimator(const RoughPoseConfig& config, hbos::PinholeCamerad camera,
+                     JumpLimit jump_limit = {});
 
   /// `points_prev[i]` (previous camera frame [m]) is observed at `observed[i]` (undistorted [px])
-  /// in the current frame. `constant_velocity` is the last frame-to-frame motion.
+  /// in the current frame. `constant_velocity` is the prediction (the last frame-to-frame motion,
+  /// or the map tracker's predicted pose, with points in world coordinates).
   /// `memory`, empty or one per match: the screenings of the match's track so far
   /// (frontend/outlier_share.hpp).
   [[nodiscard]] RoughPose estimate(const std::vector<Eigen::Vector3d>& points_prev,
@@ -48,6 +52,11 @@ class RoughPoseEstimator {
                                    const std::vector<OutlierShare>& memory = {}) const;
 
  private:
+  /// estimate() without the jump limit: RANSAC's consensus, or the remembered statics'.
+  [[nodiscard]] RoughPose best_consensus(const std::vector<Eigen::Vector3d>& points_prev,
+                                         const std::vector<Eigen::Vector2d>& observed,
+                                         const Eigen::Isometry3d& constant_velocity,
+                                         const std::vector<OutlierShare>& memory) const;
   /// PnP RANSAC on the matches with `use[i]` (all when empty); false when it finds no pose with
   /// min_inliers, or (RoughPoseConfig::check_refit) its refit does not hold half of them.
   /// `pose` is written only when true.
@@ -69,6 +78,7 @@ class RoughPoseEstimator {
 
   RoughPoseConfig config_;
   hbos::PinholeCamerad camera_;
+  JumpLimit jump_limit_;
 };
 
 }  // namespace hbos::slam

@@ -30,7 +30,7 @@ bool frame_history_kept(const Config& config) {
 Tracker::Tracker(const Config& config, const CameraModel& camera)
     : extractor_(config.extraction, camera),
       matcher_(config.matching),
-      rough_pose_(config.rough_pose, camera.pinhole()),
+      rough_pose_(config.rough_pose, camera.pinhole(), config.jump_limit),
       screen_(config.screen),
       guard_(config.guard),
       refiner_(config.refinement, camera.pinhole()),
@@ -111,11 +111,7 @@ TrackResult Tracker::track(const Frame& frame) {
   bool supported = false;
   if (stats.matches >= min_matches_) {
     // 4. Rough pose from the matches (PnP RANSAC; constant velocity as fallback).
-    RoughPose rough = rough_pose_.estimate(points_prev, observed, velocity_, memory);
-    // A consensus that puts the camera further from the prediction than any camera moves in a
-    // frame is a wrong one: the prediction stays the rough pose (as in the map tracker).
-    if (rough.from_ransac && jump_limit_.exceeded_by(rough.T_cur_prev * velocity_.inverse()))
-      rough = RoughPose{velocity_};
+    const RoughPose rough = rough_pose_.estimate(points_prev, observed, velocity_, memory);
     Eigen::Isometry3d T_candidate = rough.T_cur_prev;
     stats.rough_from_ransac = rough.from_ransac;
     stats.ransac_inliers = rough.ransac_inliers;

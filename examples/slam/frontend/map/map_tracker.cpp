@@ -91,7 +91,7 @@ struct MapTracker::Matched {
 MapTracker::MapTracker(const Config& config, const CameraModel& camera)
     : config_(config),
       extractor_(config.extraction, camera),
-      rough_pose_(map_rough_pose(config), camera.pinhole()),
+      rough_pose_(map_rough_pose(config), camera.pinhole(), config.jump_limit),
       screen_(config.screen),
       guard_(config.guard),
       refiner_(config.refinement, camera.pinhole()),
@@ -247,13 +247,9 @@ Eigen::Isometry3d MapTracker::rough_pose(const Features& current, const std::vec
     points.push_back(p.position_world);
     observed.push_back(current.undistorted[k]);
   }
+  // A consensus beyond the jump limit from the prediction is refused there (rough_pose.hpp).
   const RoughPose rough = rough_pose_.estimate(points, observed, guess);
-  // A consensus far from the prediction is a wrong one (e.g. a person holding a third of the
-  // matches): no camera jumps that far in a frame, so the prediction stays the rough pose.
-  const Eigen::Isometry3d step = rough.T_cur_prev * guess.inverse();
-  if (!rough.from_ransac || config_.jump_limit.exceeded_by(step)) {
-    return guess;
-  }
+  if (!rough.from_ransac) return guess;
   stats.rough_from_ransac = true;
   stats.ransac_inliers = rough.ransac_inliers;
   return rough.T_cur_prev;  // here: world -> current camera
