@@ -102,6 +102,23 @@ TEST_CASE("dynbench cells: the opt-in front-end settings are part of a cell's ke
   CHECK(hbos::dynbench::cell_settings(s, cell, "fingerprint") != adjusted);
 }
 
+TEST_CASE("dynbench cells: the relocaliser's refit check keys the map tracker's cells alone",
+          "[dynbench]") {
+  hbos::dynbench::BenchSettings s;
+  const hbos::dynbench::Cell cell{"walking_xyz", 1, "eroded", "default"};
+  s.base.tracker = hbos::slam::TrackerKind::kMap;
+  const auto checked = hbos::dynbench::cell_settings(s, cell, "fingerprint");
+  CHECK(checked.at("relocaliser_refit_check") == true);
+  s.base.map.relocalisation.check_refit = false;
+  CHECK(hbos::dynbench::cell_settings(s, cell, "fingerprint") != checked);
+  // The frame tracker never relocalises: its cells keep the keys they had before the check.
+  s.base.tracker = hbos::slam::TrackerKind::kFrame;
+  const auto frame = hbos::dynbench::cell_settings(s, cell, "fingerprint");
+  CHECK_FALSE(frame.contains("relocaliser_refit_check"));
+  s.base.map.relocalisation.check_refit = true;
+  CHECK(hbos::dynbench::cell_settings(s, cell, "fingerprint") == frame);
+}
+
 TEST_CASE("dynbench cells: a camera file's numbers, not only its name, are part of a cell's key",
           "[dynbench]") {
   const fs::path dir = fs::temp_directory_path() / "hbos_dynbench_camera_key";

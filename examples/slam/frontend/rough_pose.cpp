@@ -1,5 +1,7 @@
 #include "frontend/rough_pose.hpp"
 
+#include "frontend/pnp_refit.hpp"
+
 #include <fmt/format.h>
 #include <hbos/error.hpp>
 
@@ -62,31 +64,14 @@ bool RoughPoseEstimator::consensus(const std::vector<cv::Point3d>& object,
   Eigen::Isometry3d found = Eigen::Isometry3d::Identity();
   found.linear() = rotation;
   found.translation() = Eigen::Vector3d(tvec.at<double>(0), tvec.at<double>(1), tvec.at<double>(2));
-  // solvePnPRansac returns its inliers' refit (Levenberg-Marquardt), not the pose that found
-  // them, and on a distant, shallow scene that refit can leave the consensus altogether: the
-  // inliers it reports no longer lie within the threshold of the pose it returns (docs/results.md,
-  // "A frame-to-frame pose that jumped 5 m"). Such a pose is no consensus.
-  if (config_.check_refit && !holds_its_inliers(*o, *i, inliers, found)) return false;
+  // A refit that left its own inliers is no consensus (frontend/pnp_refit.hpp).
+  if (config_.check_refit &&
+      !refit_holds_inliers(*o, *i, inliers, found, camera_, config_.ransac_threshold_px,
+                           config_.min_inliers)) {
+    return false;
+  }
   pose = found;
   return true;
-}
-
-bool RoughPoseEstimator::holds_its_inliers(const std::vector<cv::Point3d>& object,
-                                           const std::vector<cv::Point2d>& image,
-                                           const std::vector<int>& inliers,
-                                           const Eigen::Isometry3d& pose) const {
-  const double threshold2 = config_.ransac_threshold_px * config_.ransac_threshold_px;
-  std::size_t held = 0;
-  for (const int k : inliers) {
-    const auto& q = object[static_cast<std::size_t>(k)];
-    const Eigen::Vector3d p = pose * Eigen::Vector3d(q.x, q.y, q.z);
-    if (!(p.z() > 0.0)) continue;
-    const auto& u = image[static_cast<std::size_t>(k)];
-    if ((camera_.project(p) - Eigen::Vector2d(u.x, u.y)).squaredNorm() <= threshold2) ++held;
-  }
-  // The refit of a sound consensus moves few of its inliers across the threshold (about as many
-  // in as out); half lost is a different pose.
-  return 2 * held >= inliers.size() && static_cast<int>(held) >= config_.min_inliers;
 }
 
 double RoughPoseEstimator::remembered_support(const std::vector<cv::Point3d>& object,

@@ -63,12 +63,6 @@ class RoughPoseEstimator {
   bool consensus(const std::vector<cv::Point3d>& object, const std::vector<cv::Point2d>& image,
                  const std::vector<std::uint8_t>& use, Eigen::Isometry3d& pose,
                  std::vector<int>& inliers) const;
-  /// True when at least half of RANSAC's `inliers` (and min_inliers of them) lie within the
-  /// threshold under the `pose` it returned.
-  [[nodiscard]] bool holds_its_inliers(const std::vector<cv::Point3d>& object,
-                                       const std::vector<cv::Point2d>& image,
-                                       const std::vector<int>& inliers,
-                                       const Eigen::Isometry3d& pose) const;
   /// Sum over the matches within the RANSAC threshold under `pose` of their tracks' static
   /// trust (OutlierShare::static_trust).
   [[nodiscard]] double remembered_support(const std::vector<cv::Point3d>& object,

@@ -63,6 +63,9 @@ struct RelocalisationConfig {
   double ransac_threshold_px = 2.447;  ///< [px at level 0] sqrt(5.991), ORB-SLAM2's PnP gate
   int ransac_iterations = 300;
   int min_pnp_inliers = 20;  ///< PnP inliers to try the pose against the local map
+  /// A RANSAC pose whose refit no longer holds half of its inliers within the threshold is
+  /// refused, as the rough pose's (RoughPoseConfig::check_refit; frontend/pnp_refit.hpp).
+  bool check_refit = true;
 };
 
 /// The screen's memory per map point (see screening_history.hpp).
