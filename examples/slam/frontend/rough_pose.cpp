@@ -1,12 +1,11 @@
 #include "frontend/rough_pose.hpp"
 
-#include "frontend/pnp_refit.hpp"
+#include "frontend/pnp_pose.hpp"
 
 #include <fmt/format.h>
 #include <hbos/error.hpp>
 
 #include <opencv2/calib3d.hpp>
-#include <opencv2/core/eigen.hpp>
 
 namespace hbos::slam {
 
@@ -57,14 +56,8 @@ bool RoughPoseEstimator::consensus(const std::vector<cv::Point3d>& object,
                                      static_cast<float>(config_.ransac_threshold_px),
                                      config_.ransac_confidence, inliers);
   if (!ok || static_cast<int>(inliers.size()) < config_.min_inliers) return false;
-  cv::Matx33d R;
-  cv::Rodrigues(rvec, R);
-  Eigen::Matrix3d rotation;
-  cv::cv2eigen(cv::Mat(R), rotation);
-  Eigen::Isometry3d found = Eigen::Isometry3d::Identity();
-  found.linear() = rotation;
-  found.translation() = Eigen::Vector3d(tvec.at<double>(0), tvec.at<double>(1), tvec.at<double>(2));
-  // A refit that left its own inliers is no consensus (frontend/pnp_refit.hpp).
+  const Eigen::Isometry3d found = pose_from_rodrigues(rvec, tvec);
+  // A refit that left its own inliers is no consensus (frontend/pnp_pose.hpp).
   if (config_.check_refit &&
       !refit_holds_inliers(*o, *i, inliers, found, camera_, config_.ransac_threshold_px,
                            config_.min_inliers)) {

@@ -24,7 +24,7 @@ target_sources(hbos_slam PRIVATE
   ${_hbos_frontend_dir}/person_detector.cpp
   ${_hbos_frontend_dir}/person_mask.cpp
   ${_hbos_frontend_dir}/person_scenario.cpp
-  ${_hbos_frontend_dir}/pnp_refit.cpp
+  ${_hbos_frontend_dir}/pnp_pose.cpp
   ${_hbos_frontend_dir}/pose_refiner.cpp
   ${_hbos_frontend_dir}/residual_screen.cpp
   ${_hbos_frontend_dir}/rough_pose.cpp

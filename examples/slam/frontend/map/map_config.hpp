@@ -64,7 +64,7 @@ struct RelocalisationConfig {
   int ransac_iterations = 300;
   int min_pnp_inliers = 20;  ///< PnP inliers to try the pose against the local map
   /// A RANSAC pose whose refit no longer holds half of its inliers within the threshold is
-  /// refused, as the rough pose's (RoughPoseConfig::check_refit; frontend/pnp_refit.hpp).
+  /// refused, as the rough pose's (RoughPoseConfig::check_refit; frontend/pnp_pose.hpp).
   bool check_refit = true;
 };
 

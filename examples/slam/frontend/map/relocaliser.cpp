@@ -1,9 +1,8 @@
 #include "frontend/map/relocaliser.hpp"
 
-#include "frontend/pnp_refit.hpp"
+#include "frontend/pnp_pose.hpp"
 
 #include <opencv2/calib3d.hpp>
-#include <opencv2/core/eigen.hpp>
 
 #include <algorithm>
 
@@ -40,15 +39,8 @@ Relocalisation Relocaliser::relocalise(const Map& map, const ProjectionMatcher& 
         object, image, K, cv::noArray(), rvec, tvec, false, config_.ransac_iterations,
         static_cast<float>(config_.ransac_threshold_px), 0.99, inliers, cv::SOLVEPNP_EPNP);
     if (!ok || static_cast<int>(inliers.size()) < config_.min_pnp_inliers) continue;
-    cv::Matx33d R;
-    cv::Rodrigues(rvec, R);
-    Eigen::Matrix3d rotation;
-    cv::cv2eigen(cv::Mat(R), rotation);
-    Eigen::Isometry3d T_camera_world = Eigen::Isometry3d::Identity();
-    T_camera_world.linear() = rotation;
-    T_camera_world.translation() =
-        Eigen::Vector3d(tvec.at<double>(0), tvec.at<double>(1), tvec.at<double>(2));
-    // RANSAC returns its inliers' refit, which can leave them (frontend/pnp_refit.hpp): then
+    const Eigen::Isometry3d T_camera_world = pose_from_rodrigues(rvec, tvec);
+    // RANSAC returns its inliers' refit, which can leave them (frontend/pnp_pose.hpp): then
     // this keyframe gave no pose, and an older one may.
     if (config_.check_refit &&
         !refit_holds_inliers(object, image, inliers, T_camera_world, camera_,

@@ -1,10 +1,10 @@
 // The check both PnP RANSACs of the front end make of the pose they return
-// (frontend/pnp_refit.hpp): a refit holds its consensus when half of its inliers still lie
+// (frontend/pnp_pose.hpp): a refit holds its consensus when half of its inliers still lie
 // within the threshold.
 
 #include <catch2/catch.hpp>
 
-#include "frontend/pnp_refit.hpp"
+#include "frontend/pnp_pose.hpp"
 
 #include <random>
 #include <vector>

@@ -1,8 +1,22 @@
-#include "frontend/pnp_refit.hpp"
+#include "frontend/pnp_pose.hpp"
+
+#include <opencv2/calib3d.hpp>
+#include <opencv2/core/eigen.hpp>
 
 #include <cstddef>
 
 namespace hbos::slam {
+
+Eigen::Isometry3d pose_from_rodrigues(const cv::Mat& rvec, const cv::Mat& tvec) {
+  cv::Matx33d R;
+  cv::Rodrigues(rvec, R);
+  Eigen::Matrix3d rotation;
+  cv::cv2eigen(cv::Mat(R), rotation);
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.linear() = rotation;
+  pose.translation() = Eigen::Vector3d(tvec.at<double>(0), tvec.at<double>(1), tvec.at<double>(2));
+  return pose;
+}
 
 bool refit_holds_inliers(const std::vector<cv::Point3d>& object,
                          const std::vector<cv::Point2d>& image, const std::vector<int>& inliers,
