@@ -42,6 +42,12 @@ std::string non_default_settings(const slam::Config& c) {
   if (c.tracker == slam::TrackerKind::kMap && !c.screen.provisional_consensus)
     named += ", new points without their own consensus";
   if (c.refinement.huber_from_noise) named += ", Huber width from the matches' noise";
+  if (c.screen.later_rounds_gate_floor) {
+    named += *c.screen.later_rounds_gate_floor > 0.0
+                 ? fmt::format(", the noise gate's floor {:g} after the first round",
+                               *c.screen.later_rounds_gate_floor)
+                 : std::string(", chi^2's gate floor in every round");
+  }
   if (c.tracker == slam::TrackerKind::kMap && c.map.local_bundle.enabled)
     named += ", local bundle adjustment";
   return named;
@@ -179,6 +185,7 @@ nlohmann::json table_json(const std::vector<TableRow>& rows,
                    {"huber_from_noise", settings.base.refinement.huber_from_noise},
                    {"local_bundle_adjustment", settings.base.map.local_bundle.enabled},
                    {"provisional_consensus", settings.base.screen.provisional_consensus},
+                   {"later_rounds_gate_floor", slam::later_rounds_gate_floor(settings.base)},
                    {"rough_pose", slam::to_string(settings.base.rough_pose.method)},
                    {"ransac_threshold_px", settings.base.rough_pose.ransac_threshold_px},
                    {"spread", "sample standard deviation over seeds (n - 1)"},

@@ -99,7 +99,15 @@ TEST_CASE("dynbench cells: the opt-in front-end settings are part of a cell's ke
   // The new points' own consensus is on by default; a run without it keeps cells of its own.
   CHECK(plain.at("provisional_consensus") == true);
   s.base.screen.provisional_consensus = false;
-  CHECK(hbos::dynbench::cell_settings(s, cell, "fingerprint") != adjusted);
+  const auto without_consensus = hbos::dynbench::cell_settings(s, cell, "fingerprint");
+  CHECK(without_consensus != adjusted);
+  // The later rounds' gate floor keys them too, as the tracker resolves it: cells of one floor
+  // are never taken for another.
+  CHECK(plain.at("later_rounds_gate_floor") == hbos::slam::later_rounds_gate_floor(s.base));
+  s.base.screen.later_rounds_gate_floor = 1.5;
+  const auto lower_floor = hbos::dynbench::cell_settings(s, cell, "fingerprint");
+  CHECK(lower_floor.at("later_rounds_gate_floor") == 1.5);
+  CHECK(lower_floor != without_consensus);
 }
 
 TEST_CASE("dynbench cells: the relocaliser's refit check keys the map tracker's cells alone",
@@ -256,6 +264,9 @@ TEST_CASE("dynbench --help names the front end's on/off settings and their defau
   REQUIRE(consensus != std::string::npos);
   CHECK(help.find("(default: on)", consensus) < help.find("--history-consensus", consensus));
   CHECK_THAT(help, Catch::Contains("--rounds"));
+  const std::size_t later = help.find("--later-rounds-floor");
+  REQUIRE(later != std::string::npos);
+  CHECK(help.find("the tracker's own", later) < help.find("--rounds", later));
 }
 
 TEST_CASE("dynbench end to end on a short rendered scenario", "[dynbench][render]") {

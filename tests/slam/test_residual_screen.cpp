@@ -1,6 +1,7 @@
-// The front end's screening stage (frontend/residual_screen.hpp) and the map tracker's points
-// on probation: they are passed as flagged matches, and with provisional_consensus (the default)
-// the default screen takes their coherence over one another too.
+// The front end's screening stage (frontend/residual_screen.hpp): the map tracker's points on
+// probation are passed as flagged matches, and with provisional_consensus (the default) the
+// default screen takes their coherence over one another too; the rounds after the first gate at
+// their own floor (later_rounds_gate_floor).
 
 #include <catch2/catch.hpp>
 
@@ -10,8 +11,10 @@
 
 #include <Eigen/Geometry>
 
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <random>
 #include <vector>
 
@@ -87,4 +90,106 @@ TEST_CASE("the screening stage lets new points vouch for each other unless told 
   CHECK(kept_share(with, 400, f.person_begin) > 0.95);
   CHECK(kept_share(with, 0, 400) > 0.98);
   for (std::size_t i = 0; i < 400; ++i) CHECK(with.inlier[i] == without.inlier[i]);
+}
+
+namespace {
+
+// A room of 500 points 3-4 m away (noise 0.3 px) under the true pose, 40 of them observed
+// 2.25 px off in a random direction: inside chi^2's gate (2.447 px/sigma at sigma 1), beyond a
+// gate of 2.0.
+Frame room_with_a_tail(std::size_t& tail_begin) {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-1.0, 1.0), room_depth(3.0, 4.0), angle(0.0, 6.283);
+  std::normal_distribution<double> noise(0.0, 0.3);
+  Frame f;
+  tail_begin = 460;
+  for (std::size_t i = 0; i < 500; ++i) {
+    const double z = room_depth(rng);
+    const Eigen::Vector3d p(u(rng) * 0.55 * z, u(rng) * 0.42 * z, z);
+    const double a = angle(rng);
+    const Eigen::Vector2d off = i >= tail_begin
+                                    ? Eigen::Vector2d(2.25 * std::cos(a), 2.25 * std::sin(a))
+                                    : Eigen::Vector2d(noise(rng), noise(rng));
+    f.points.push_back(p);
+    f.observed.push_back(kCamera.project(p) + off);
+    f.sigma.push_back(1.0);
+  }
+  return f;
+}
+
+}  // namespace
+
+TEST_CASE("the screening stage's later rounds gate at their own floor, the first at chi^2's",
+          "[screen_stage]") {
+  std::size_t tail = 0;
+  const Frame f = room_with_a_tail(tail);
+  const slam::PoseRefiner refiner(slam::RefinementConfig{}, kCamera);
+  const auto screen_with = [&](int rounds, double later_floor) {
+    slam::ScreenStageConfig config;
+    config.rounds = rounds;
+    config.later_rounds_gate_floor = later_floor;
+    slam::ResidualScreen stage(config);
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    return stage.screen(f.points, f.observed, f.sigma, T, refiner, f.evidence);
+  };
+  // Unset, each tracker resolves its own; the stage alone screens every round alike.
+  slam::Config map_config, frame_config;
+  map_config.tracker = slam::TrackerKind::kMap;
+  CHECK(slam::later_rounds_gate_floor(map_config) == 0.0);
+  CHECK(slam::later_rounds_gate_floor(frame_config) ==
+        Approx(3.0 * hbos::NoiseGate{}.min_scale).epsilon(1e-15));
+  CHECK(slam::screen_stage_for(frame_config).later_rounds_gate_floor ==
+        slam::later_rounds_gate_floor(frame_config));
+  map_config.screen.later_rounds_gate_floor = 1.5;  // set: the same for either tracker
+  CHECK(slam::later_rounds_gate_floor(map_config) == 1.5);
+  CHECK_FALSE(slam::ScreenStageConfig{}.later_rounds_gate_floor.has_value());
+  const std::size_t n = f.points.size();
+  // The first round is chi^2's gate whatever the later floor: the tail is kept.
+  const slam::ScreenOutcome one_round = screen_with(1, 2.0);
+  CHECK(one_round.inlier == screen_with(1, 0.0).inlier);
+  CHECK(kept_share(one_round, tail, n) == 1.0);
+  // After a refinement the gate closes to max(2.0, 3 s): the tail goes, the room stays.
+  const slam::ScreenOutcome later = screen_with(4, 2.0);
+  CHECK(later.rounds == 4);
+  CHECK(later.magnitude_cut == Approx(2.0));
+  CHECK(kept_share(later, tail, n) == 0.0);
+  CHECK(kept_share(later, 0, tail) > 0.99);
+  // Nothing carries over from one frame to the next: the first round of every call is judged at
+  // chi^2's floor again, so a stage that screened before gives a fresh stage's bits.
+  {
+    slam::ScreenStageConfig config;
+    config.later_rounds_gate_floor = 2.0;
+    slam::ResidualScreen used(config), fresh(config);
+    Eigen::Isometry3d T1 = Eigen::Isometry3d::Identity(), T2 = T1;
+    (void)used.screen(f.points, f.observed, f.sigma, T1, refiner, f.evidence);
+    T1 = Eigen::Isometry3d::Identity();
+    const slam::ScreenOutcome again = used.screen(f.points, f.observed, f.sigma, T1, refiner);
+    const slam::ScreenOutcome first = fresh.screen(f.points, f.observed, f.sigma, T2, refiner);
+    CHECK(again.magnitude == first.magnitude);
+    CHECK(T1.matrix() == T2.matrix());
+  }
+  // With 0 every round keeps chi^2's floor.
+  const slam::ScreenOutcome same = screen_with(4, 0.0);
+  CHECK(same.magnitude_cut == Approx(2.447));
+  CHECK(kept_share(same, tail, n) == 1.0);
+  // A baseline has no noise gate to lower: the setting changes nothing.
+  slam::ScreenStageConfig chi2;
+  chi2.select("chi2");
+  const auto chi2_with = [&](double later_floor) {
+    chi2.later_rounds_gate_floor = later_floor;
+    slam::ResidualScreen stage(chi2);
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    return stage.screen(f.points, f.observed, f.sigma, T, refiner, f.evidence).inlier;
+  };
+  CHECK(chi2_with(2.0) == chi2_with(0.0));
+}
+
+TEST_CASE("the screening stage refuses a later rounds' floor that is negative or not finite",
+          "[screen_stage]") {
+  for (const double bad : {-0.5, std::numeric_limits<double>::infinity()}) {
+    slam::ScreenStageConfig config;
+    config.later_rounds_gate_floor = bad;
+    CHECK_THROWS_WITH(slam::ResidualScreen(config), Catch::Contains("later rounds' gate floor") &&
+                                                        Catch::Contains("must be finite and >= 0"));
+  }
 }

@@ -10,8 +10,10 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <random>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -828,6 +830,89 @@ TEST_CASE(
   CHECK_THROWS_WITH(
       hbos::screen_and_refine_pose(chi2, scene.points_world, camera, T, m, zero_rounds),
       Catch::Contains("rounds must be >= 1, got 0"));
+}
+
+TEST_CASE("iterated mode: a later gate floor judges only the rounds after the first refinement",
+          "[reprojection][iterated]") {
+  hbos_test::SceneConfig config;
+  config.seed = 11;
+  config.pose_error_px = 2.0;
+  config.person_share = 0.1;
+  hbos_test::Scene scene = hbos_test::make_scene(config);
+  // A tail of 30 statics observed exactly 2.25 sigma off their true projection (the synthetic
+  // noise, 0.5 sigma per axis, leaves almost none between the two floors): inside the screen's
+  // own floor, beyond 2.0.
+  std::vector<Eigen::Index> tail;
+  for (Eigen::Index i = 0; i < scene.size() && tail.size() < 30; ++i) {
+    if (scene.label[static_cast<std::size_t>(i)] != hbos_test::Label::Static) continue;
+    const double a = 0.7 * static_cast<double>(tail.size());
+    scene.observed.col(i) =
+        scene.project(scene.T_cur_world_true * Eigen::Vector3d(scene.points_world.col(i))) +
+        2.25 * scene.sigma(i) * Eigen::Vector2d(std::cos(a), std::sin(a));
+    tail.push_back(i);
+  }
+  const hbos::PinholeCamerad camera;
+  hbos::Matchesd m;
+  hbos::ReprojectionScreend screen;
+  const double own_floor = std::get<hbos::HbosScreen>(screen.config().strategy).gate.floor;
+  REQUIRE(own_floor > 2.0);
+  const auto run = [&](int rounds, double later_floor) {
+    hbos::IteratedScreenOptions options;
+    options.rounds = rounds;
+    options.later_gate_floor = later_floor;
+    Eigen::Isometry3d T = scene.T_cur_world_rough;
+    hbos::project_matches(scene.points_world, scene.observed, scene.sigma, scene.on_dynamic_mask, T,
+                          camera, m);
+    const auto& r = hbos::screen_and_refine_pose(screen, scene.points_world, camera, T, m, options);
+    // The caller's own config is back in place, whatever the rounds used.
+    CHECK(std::get<hbos::HbosScreen>(screen.config().strategy).gate.floor == own_floor);
+    return std::make_tuple(std::vector<std::uint8_t>(r.inliers().begin(), r.inliers().end()),
+                           r.magnitude_cut(), r.noise_scale());
+  };
+  // One round: the later floor never applies.
+  CHECK(std::get<0>(run(1, 2.0)) == std::get<0>(run(1, 0.0)));
+  // Four rounds: the last one gates at max(2.0, 3 s), below the screen's own floor.
+  const auto [kept_low, cut_low, scale_low] = run(4, 2.0);
+  CHECK(cut_low == std::max(2.0, 3.0 * scale_low));
+  CHECK(cut_low < own_floor);
+  const auto [kept_own, cut_own, scale_own] = run(4, 0.0);
+  CHECK(cut_own == std::max(own_floor, 3.0 * scale_own));
+  // Most of the tail is kept at the screen's own floor and dropped at 2.0 (the refined poses
+  // differ a little, so each match's residual does too).
+  int kept_at_own = 0, kept_at_low = 0;
+  for (const Eigen::Index i : tail) {
+    kept_at_own += kept_own[static_cast<std::size_t>(i)];
+    kept_at_low += kept_low[static_cast<std::size_t>(i)];
+  }
+  CHECK(kept_at_own >= 25);
+  CHECK(kept_at_low <= 5);
+  // The screen's own floor, given again, changes nothing.
+  CHECK(std::get<0>(run(4, own_floor)) == kept_own);
+
+  SECTION("a strategy without a noise gate ignores it") {
+    hbos::ReprojectionScreend chi2(hbos::ChiSquareGate{});
+    const auto with = [&](double later_floor) {
+      hbos::IteratedScreenOptions options;
+      options.later_gate_floor = later_floor;
+      Eigen::Isometry3d T = scene.T_cur_world_rough;
+      hbos::project_matches(scene.points_world, scene.observed, scene.sigma, scene.on_dynamic_mask,
+                            T, camera, m);
+      const auto& r = hbos::screen_and_refine_pose(chi2, scene.points_world, camera, T, m, options);
+      return std::vector<std::uint8_t>(r.inliers().begin(), r.inliers().end());
+    };
+    CHECK(with(2.0) == with(0.0));
+  }
+  SECTION("a negative or non-finite floor is refused, naming the value") {
+    hbos::IteratedScreenOptions options;
+    Eigen::Isometry3d T = scene.T_cur_world_rough;
+    hbos::project_matches(scene.points_world, scene.observed, T, camera, m);
+    for (const double bad : {-1.0, std::numeric_limits<double>::quiet_NaN()}) {
+      options.later_gate_floor = bad;
+      CHECK_THROWS_WITH(
+          hbos::screen_and_refine_pose(screen, scene.points_world, camera, T, m, options),
+          Catch::Contains("later_gate_floor must be finite and >= 0"));
+    }
+  }
 }
 
 // ---- the snippet of docs/screening.md, compiled --------------------------------------------

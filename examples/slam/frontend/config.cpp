@@ -4,6 +4,21 @@
 
 namespace hbos::slam {
 
+double later_rounds_gate_floor(const Config& config) {
+  if (config.screen.later_rounds_gate_floor) return *config.screen.later_rounds_gate_floor;
+  if (config.tracker == TrackerKind::kMap) return 0.0;
+  // The least gate 3 noise scales can be (the scale never falls below min_scale): no floor
+  // beyond the noise scale's own.
+  const hbos::NoiseGate gate;
+  return gate.scales * gate.min_scale;
+}
+
+ScreenStageConfig screen_stage_for(const Config& config) {
+  ScreenStageConfig stage = config.screen;
+  stage.later_rounds_gate_floor = later_rounds_gate_floor(config);
+  return stage;
+}
+
 const char* to_string(MaskSource source) {
   switch (source) {
     case MaskSource::kNone:

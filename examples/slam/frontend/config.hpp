@@ -148,6 +148,15 @@ struct ScreenStageConfig {
   /// inside the noise gate, is caught by moving together. The frame tracker flags nothing.
   /// On: measured in docs/results.md ("New points vouch for each other", stop 35).
   bool provisional_consensus = true;
+  /// [px/sigma] the default screen's noise-gate floor (hbos::NoiseGate::floor) in the rounds
+  /// after the first; 0 = the screen's own floor in every round; unset = the tracker's own
+  /// (later_rounds_gate_floor(const Config&)). The first round judges the matches under the
+  /// rough pose, whose error the residual field may not absorb: there the floor stays at
+  /// chi^2's 2.447, so a static match is lost no more often than chi^2 loses it. The later
+  /// rounds judge them under a pose refined on that round's survivors, where the gate can follow
+  /// the noise the frame has (3 noise scales) down to this floor. Only strategies with a noise
+  /// gate use it.
+  std::optional<double> later_rounds_gate_floor;
 
   /// Selects a strategy of hbos::named_strategies() by name, or "none".
   /// \throws hbos::InvalidArgument naming the value and the choices.
@@ -225,6 +234,16 @@ struct Config {
   MapConfig map;         ///< the map tracker's own stages (frontend/map/map_config.hpp)
   OutputConfig output;
 };
+
+/// The noise gate's floor [px/sigma] in the screening rounds after the first: the one set
+/// (ScreenStageConfig::later_rounds_gate_floor), or the tracker's own. The frame tracker's is
+/// 3 x NoiseGate::min_scale = 1.22, the least 3 noise scales can be: no floor of its own (its
+/// ATE fell on 48 of 60 held-out rendered runs). The map tracker's is 0, chi^2's floor in every
+/// round: with 2.0 its ATE fell on 42 of 60, but one pose refined onto a slow, unmasked person
+/// locked in and the mean rose (docs/results.md, "The noise gate after the first refinement").
+[[nodiscard]] double later_rounds_gate_floor(const Config& config);
+/// config.screen with later_rounds_gate_floor set to the value above: what a tracker screens with.
+[[nodiscard]] ScreenStageConfig screen_stage_for(const Config& config);
 
 /// `none`, `exact`, `degraded`, `detector`.
 [[nodiscard]] const char* to_string(MaskSource source);

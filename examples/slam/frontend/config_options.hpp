@@ -42,6 +42,12 @@ inline void add_front_end_options(CLI::App& app, Config& c) {
   add_switch(app, "huber-from-noise", c.refinement.huber_from_noise,
              "scale the pose refinement's Huber width (2.447 px/sigma, ORB-SLAM2's) by the noise "
              "the refined matches have, never wider (docs/slam_demo.md)");
+  app.add_option_function<double>(
+         "--later-rounds-floor", [&c](double floor) { c.screen.later_rounds_gate_floor = floor; },
+         "the default screen's noise-gate floor [px/sigma] in the rounds after the first "
+         "refinement; 0 = the first round's (chi^2's 2.447) in every round (default: the "
+         "tracker's own: frame 1.22 = 3 x the least noise scale, map 0; docs/results.md)")
+      ->check(CLI::Range(0.0, 100.0));
   app.add_option("--rounds", c.screen.rounds, "screen -> refine -> re-screen rounds")
       ->capture_default_str()
       ->check(CLI::Range(1, 20));

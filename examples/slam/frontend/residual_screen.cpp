@@ -58,6 +58,8 @@ struct ResidualScreen::Impl {
   hbos::Matches<double> matches;                    // reused every frame
   std::vector<std::size_t> match_of;                // hbos match k -> caller's match index
   std::vector<std::uint8_t> use;                    // refinement mask, caller's indices
+  hbos::ScreenConfig first;                         // the config of the first round
+  std::optional<hbos::ScreenConfig> later;          // of the later ones, where they differ
 };
 
 ResidualScreen::ResidualScreen(const ScreenStageConfig& config)
@@ -66,6 +68,14 @@ ResidualScreen::ResidualScreen(const ScreenStageConfig& config)
     throw InvalidArgument(
         fmt::format("screen settings: rounds {} must be >= 1, min inliers {} >= 3", config_.rounds,
                     config_.min_inliers));
+  }
+  // Unset: every round alike (a tracker passes its own value, frontend/config.hpp).
+  const double later_floor = config_.later_rounds_gate_floor.value_or(0.0);
+  if (!std::isfinite(later_floor) || later_floor < 0.0) {
+    throw InvalidArgument(
+        fmt::format("screen settings: later rounds' gate floor {} must be finite and >= 0 "
+                    "(0 = the first round's)",
+                    later_floor));
   }
   if (config_.screen) {
     // This stage flags only points on probation (below), so their consensus among themselves
@@ -76,6 +86,16 @@ ResidualScreen::ResidualScreen(const ScreenStageConfig& config)
       s->coherence.flagged_consensus =
           s->coherence.flagged_consensus || config_.provisional_consensus;
     impl_->screen.emplace(screen);  // validates
+    impl_->first = screen;
+    // After a refinement on the survivors, the noise gate may close below chi^2's gate (see
+    // ScreenStageConfig::later_rounds_gate_floor).
+    auto* h = std::get_if<hbos::HbosScreen>(&screen.strategy);
+    if (later_floor > 0.0 && h != nullptr && h->gate.enabled && later_floor != h->gate.floor) {
+      h->gate.floor = later_floor;
+      impl_->later = screen;
+      impl_->screen->set_config(*impl_->later);  // validated now, not in the middle of a run
+      impl_->screen->set_config(impl_->first);
+    }
   }
 }
 
@@ -138,6 +158,7 @@ ScreenOutcome ResidualScreen::screen(const std::vector<Eigen::Vector3d>& points_
   double refine_us = 0.0, screen_us = 0.0;
   const hbos::ScreenResult<double>* result = nullptr;
   for (int round = 1;; ++round) {
+    if (impl_->later) impl_->screen->set_config(round == 1 ? impl_->first : *impl_->later);
     const auto start = Clock::now();
     result = &impl_->screen->screen(matches);
     screen_us += microseconds_since(start);

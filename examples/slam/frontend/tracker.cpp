@@ -31,7 +31,7 @@ Tracker::Tracker(const Config& config, const CameraModel& camera)
     : extractor_(config.extraction, camera),
       matcher_(config.matching),
       rough_pose_(config.rough_pose, camera.pinhole(), config.jump_limit),
-      screen_(config.screen),
+      screen_(screen_stage_for(config)),
       guard_(config.guard),
       refiner_(config.refinement, camera.pinhole()),
       scale_factor_(config.extraction.scale_factor),

@@ -80,6 +80,14 @@ struct IteratedScreenOptions {
   int rounds = 4;  ///< screenings in all (ORB-SLAM2's PoseOptimization runs 4 rounds), >= 1
   Eigen::Index min_inliers = 10;  ///< stop refitting below this many inliers (ORB-SLAM2: 10), >= 3
   PoseRefinementOptions refinement{};  ///< the Gauss-Newton refit on each round's inliers
+  /// [px/sigma] the noise gate's floor (NoiseGate::floor) in the rounds after the first, for
+  /// strategies with a noise gate; 0 = the screen's own floor in every round, as ORB-SLAM2 keeps
+  /// one chi^2 gate. The first round judges the rough pose, whose error the residual field may
+  /// not absorb; the later ones a pose refined on the survivors, where the gate can follow the
+  /// frame's own noise further down. The SLAM example's frame tracker gates its later rounds at 3
+  /// noise scales with no floor of their own; its map tracker keeps one floor (docs/results.md,
+  /// "The noise gate after the first refinement"). >= 0.
+  double later_gate_floor = 0.0;
 };
 
 /// The rounds of ORB-SLAM2's PoseOptimization, written out for callers that hold 3-D points:
@@ -102,23 +110,51 @@ const ScreenResult<Scalar>& screen_and_refine_pose(
                   options.rounds);
   detail::require(options.min_inliers >= 3, "IteratedScreenOptions min_inliers must be >= 3, got ",
                   options.min_inliers);
+  detail::require(std::isfinite(options.later_gate_floor) && options.later_gate_floor >= 0.0,
+                  "IteratedScreenOptions later_gate_floor must be finite and >= 0, got ",
+                  options.later_gate_floor);
   using Vec3 = Eigen::Matrix<Scalar, 3, 1>;
-  for (int round = 1;; ++round) {
-    const ScreenResult<Scalar>& result = screen.screen(matches);
-    if (round == options.rounds || result.n_inliers() < options.min_inliers) return result;
-    refine_pose(
-        matches.size(), [&](Eigen::Index i) { return Vec3(points_world.col(i)); },
-        [&](Eigen::Index i) { return matches.observed(i); },
-        [&](Eigen::Index i) { return matches.sigma(i); },
-        [&](Eigen::Index i) { return result.inlier(i); }, camera, T_cur_world, options.refinement);
-    for (Eigen::Index i = 0; i < matches.size(); ++i) {
-      const Vec3 p_c = T_cur_world * Vec3(points_world.col(i));
-      // A point pushed behind the camera by the refit keeps its old prediction.
-      if (p_c.z() > Scalar(0)) {
-        matches.set_predicted(i, camera.project(p_c));
-        matches.set_depth(i, p_c.z());
+  // The later rounds' config, where it differs; the caller's config is back in place on return,
+  // a throw included.
+  const ScreenConfig first = screen.config();
+  ScreenConfig later = first;
+  auto* gated = std::get_if<HbosScreen>(&later.strategy);
+  const bool switch_config = options.later_gate_floor > 0.0 && gated != nullptr &&
+                             gated->gate.enabled && gated->gate.floor != options.later_gate_floor;
+  if (switch_config) {
+    gated->gate.floor = options.later_gate_floor;
+    detail::validate(later);
+  }
+  // (The caller's config was validated when it was set, so putting it back cannot throw.)
+  const auto restore = [&] {
+    if (switch_config) screen.set_config(first);
+  };
+  try {
+    for (int round = 1;; ++round) {
+      if (switch_config) screen.set_config(round == 1 ? first : later);
+      const ScreenResult<Scalar>& result = screen.screen(matches);
+      if (round == options.rounds || result.n_inliers() < options.min_inliers) {
+        restore();  // the result stays valid: set_config keeps the screen's buffers
+        return result;
+      }
+      refine_pose(
+          matches.size(), [&](Eigen::Index i) { return Vec3(points_world.col(i)); },
+          [&](Eigen::Index i) { return matches.observed(i); },
+          [&](Eigen::Index i) { return matches.sigma(i); },
+          [&](Eigen::Index i) { return result.inlier(i); }, camera, T_cur_world,
+          options.refinement);
+      for (Eigen::Index i = 0; i < matches.size(); ++i) {
+        const Vec3 p_c = T_cur_world * Vec3(points_world.col(i));
+        // A point pushed behind the camera by the refit keeps its old prediction.
+        if (p_c.z() > Scalar(0)) {
+          matches.set_predicted(i, camera.project(p_c));
+          matches.set_depth(i, p_c.z());
+        }
       }
     }
+  } catch (...) {
+    restore();
+    throw;
   }
 }
 

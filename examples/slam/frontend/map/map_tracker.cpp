@@ -92,7 +92,7 @@ MapTracker::MapTracker(const Config& config, const CameraModel& camera)
     : config_(config),
       extractor_(config.extraction, camera),
       rough_pose_(map_rough_pose(config), camera.pinhole(), config.jump_limit),
-      screen_(config.screen),
+      screen_(screen_stage_for(config)),
       guard_(config.guard),
       refiner_(config.refinement, camera.pinhole()),
       matcher_(config.map.projection, camera.pinhole(), config.extraction.scale_factor,
