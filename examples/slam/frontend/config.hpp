@@ -237,10 +237,10 @@ struct Config {
 
 /// The noise gate's floor [px/sigma] in the screening rounds after the first: the one set
 /// (ScreenStageConfig::later_rounds_gate_floor), or the tracker's own. The frame tracker's is
-/// 3 x NoiseGate::min_scale = 1.22, the least 3 noise scales can be: no floor of its own (its
-/// ATE fell on 48 of 60 held-out rendered runs). The map tracker's is 0, chi^2's floor in every
-/// round: with 2.0 its ATE fell on 42 of 60, but one pose refined onto a slow, unmasked person
-/// locked in and the mean rose (docs/results.md, "The noise gate after the first refinement").
+/// 3 x the default NoiseGate::min_scale, the least 3 noise scales can be: no floor of its own.
+/// The map tracker's is 0, chi^2's floor in every round: a lower floor after the first round
+/// lowered its ATE on most rendered runs but let a pose refined onto a slow, unmasked person lock
+/// in (docs/results.md, "The noise gate after the first refinement", has the measurements).
 [[nodiscard]] double later_rounds_gate_floor(const Config& config);
 /// config.screen with later_rounds_gate_floor set to the value above: what a tracker screens with.
 [[nodiscard]] ScreenStageConfig screen_stage_for(const Config& config);
