@@ -239,8 +239,9 @@ struct Config {
 /// (ScreenStageConfig::later_rounds_gate_floor), or the tracker's own. The frame tracker's is
 /// 3 x the default NoiseGate::min_scale, the least 3 noise scales can be: no floor of its own.
 /// The map tracker's is 0, chi^2's floor in every round: a lower floor after the first round
-/// lowered its ATE on most rendered runs but let a pose refined onto a slow, unmasked person lock
-/// in (docs/results.md, "The noise gate after the first refinement", has the measurements).
+/// lowered its ATE on most rendered runs but let the pose follow an unmasked person filling most
+/// of the view (docs/results.md, "The noise gate after the first refinement", has the
+/// measurements).
 [[nodiscard]] double later_rounds_gate_floor(const Config& config);
 /// config.screen with later_rounds_gate_floor set to the value above: what a tracker screens with.
 [[nodiscard]] ScreenStageConfig screen_stage_for(const Config& config);
