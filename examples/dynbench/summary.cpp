@@ -42,10 +42,13 @@ std::string non_default_settings(const slam::Config& c) {
   if (c.tracker == slam::TrackerKind::kMap && !c.screen.provisional_consensus)
     named += ", new points without their own consensus";
   if (c.refinement.huber_from_noise) named += ", Huber width from the matches' noise";
-  if (c.screen.later_rounds_gate_floor) {
-    named += *c.screen.later_rounds_gate_floor > 0.0
-                 ? fmt::format(", the noise gate's floor {:g} after the first round",
-                               *c.screen.later_rounds_gate_floor)
+  // Set explicitly, and not to the tracker's own value.
+  slam::Config tracker_default = c;
+  tracker_default.screen.later_rounds_gate_floor.reset();
+  const double later_floor = slam::later_rounds_gate_floor(c);
+  if (later_floor != slam::later_rounds_gate_floor(tracker_default)) {
+    named += later_floor > 0.0
+                 ? fmt::format(", the noise gate's floor {:g} after the first round", later_floor)
                  : std::string(", chi^2's gate floor in every round");
   }
   if (c.tracker == slam::TrackerKind::kMap && c.map.local_bundle.enabled)

@@ -889,6 +889,18 @@ TEST_CASE("iterated mode: a later gate floor judges only the rounds after the fi
   // The screen's own floor, given again, changes nothing.
   CHECK(std::get<0>(run(4, own_floor)) == kept_own);
 
+  SECTION("the later rounds' config: only a noise gate's floor changes, and only when it differs") {
+    const hbos::ScreenConfig own;
+    const auto later = hbos::later_rounds_config(own, 2.0);
+    REQUIRE(later.has_value());
+    CHECK(std::get<hbos::HbosScreen>(later->strategy).gate.floor == 2.0);
+    CHECK(std::get<hbos::HbosScreen>(later->strategy).gate.scales ==
+          std::get<hbos::HbosScreen>(own.strategy).gate.scales);
+    CHECK_FALSE(hbos::later_rounds_config(own, 0.0).has_value());
+    CHECK_FALSE(hbos::later_rounds_config(own, own_floor).has_value());
+    CHECK_FALSE(hbos::later_rounds_config(hbos::ScreenConfig{hbos::ChiSquareGate{}}, 2.0));
+    CHECK_FALSE(hbos::later_rounds_config(hbos::ScreenConfig{hbos::HbosScreen::paper()}, 2.0));
+  }
   SECTION("a strategy without a noise gate ignores it") {
     hbos::ReprojectionScreend chi2(hbos::ChiSquareGate{});
     const auto with = [&](double later_floor) {
@@ -910,7 +922,7 @@ TEST_CASE("iterated mode: a later gate floor judges only the rounds after the fi
       options.later_gate_floor = bad;
       CHECK_THROWS_WITH(
           hbos::screen_and_refine_pose(screen, scene.points_world, camera, T, m, options),
-          Catch::Contains("later_gate_floor must be finite and >= 0"));
+          Catch::Contains("later rounds' gate floor must be finite and >= 0"));
     }
   }
 }

@@ -69,14 +69,6 @@ ResidualScreen::ResidualScreen(const ScreenStageConfig& config)
         fmt::format("screen settings: rounds {} must be >= 1, min inliers {} >= 3", config_.rounds,
                     config_.min_inliers));
   }
-  // Unset: every round alike (a tracker passes its own value, frontend/config.hpp).
-  const double later_floor = config_.later_rounds_gate_floor.value_or(0.0);
-  if (!std::isfinite(later_floor) || later_floor < 0.0) {
-    throw InvalidArgument(
-        fmt::format("screen settings: later rounds' gate floor {} must be finite and >= 0 "
-                    "(0 = the first round's)",
-                    later_floor));
-  }
   if (config_.screen) {
     // This stage flags only points on probation (below), so their consensus among themselves
     // is what flagged_consensus measures; the library's default leaves it off, where a flag can
@@ -88,14 +80,9 @@ ResidualScreen::ResidualScreen(const ScreenStageConfig& config)
     impl_->screen.emplace(screen);  // validates
     impl_->first = screen;
     // After a refinement on the survivors, the noise gate may close below chi^2's gate (see
-    // ScreenStageConfig::later_rounds_gate_floor).
-    auto* h = std::get_if<hbos::HbosScreen>(&screen.strategy);
-    if (later_floor > 0.0 && h != nullptr && h->gate.enabled && later_floor != h->gate.floor) {
-      h->gate.floor = later_floor;
-      impl_->later = screen;
-      impl_->screen->set_config(*impl_->later);  // validated now, not in the middle of a run
-      impl_->screen->set_config(impl_->first);
-    }
+    // ScreenStageConfig::later_rounds_gate_floor; unset: every round alike, a tracker passes
+    // its own value). Throws for a negative or non-finite floor.
+    impl_->later = hbos::later_rounds_config(screen, config_.later_rounds_gate_floor.value_or(0.0));
   }
 }
 

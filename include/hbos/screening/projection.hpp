@@ -19,6 +19,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <cmath>
+#include <optional>
 
 #include "hbos/error.hpp"
 #include "hbos/screening/pinhole.hpp"
@@ -110,28 +111,19 @@ const ScreenResult<Scalar>& screen_and_refine_pose(
                   options.rounds);
   detail::require(options.min_inliers >= 3, "IteratedScreenOptions min_inliers must be >= 3, got ",
                   options.min_inliers);
-  detail::require(std::isfinite(options.later_gate_floor) && options.later_gate_floor >= 0.0,
-                  "IteratedScreenOptions later_gate_floor must be finite and >= 0, got ",
-                  options.later_gate_floor);
   using Vec3 = Eigen::Matrix<Scalar, 3, 1>;
   // The later rounds' config, where it differs; the caller's config is back in place on return,
   // a throw included.
   const ScreenConfig first = screen.config();
-  ScreenConfig later = first;
-  auto* gated = std::get_if<HbosScreen>(&later.strategy);
-  const bool switch_config = options.later_gate_floor > 0.0 && gated != nullptr &&
-                             gated->gate.enabled && gated->gate.floor != options.later_gate_floor;
-  if (switch_config) {
-    gated->gate.floor = options.later_gate_floor;
-    detail::validate(later);
-  }
+  const std::optional<ScreenConfig> later = later_rounds_config(first, options.later_gate_floor);
+  const bool switch_config = later.has_value();
   // (The caller's config was validated when it was set, so putting it back cannot throw.)
   const auto restore = [&] {
     if (switch_config) screen.set_config(first);
   };
   try {
     for (int round = 1;; ++round) {
-      if (switch_config) screen.set_config(round == 1 ? first : later);
+      if (switch_config) screen.set_config(round == 1 ? first : *later);
       const ScreenResult<Scalar>& result = screen.screen(matches);
       if (round == options.rounds || result.n_inliers() < options.min_inliers) {
         restore();  // the result stays valid: set_config keeps the screen's buffers

@@ -39,6 +39,7 @@
 #include <Eigen/Core>
 #include <array>
 #include <cmath>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <variant>
@@ -352,6 +353,25 @@ inline void validate(const ScreenConfig& c) {
 }
 
 }  // namespace detail
+
+/// The config of the screening rounds after the first (the rounds of a pose optimisation, after
+/// a refinement on the survivors) when their noise gate takes the floor `later_gate_floor`
+/// [px/sigma] instead of `config`'s own; nullopt when nothing would change: 0 (every round
+/// alike), a strategy without a noise gate, or the same floor. One rule for every caller that
+/// writes the rounds loop (projection.hpp's helper, the SLAM example's screening stage).
+/// \throws InvalidArgument if `later_gate_floor` is negative or not finite.
+[[nodiscard]] inline std::optional<ScreenConfig> later_rounds_config(const ScreenConfig& config,
+                                                                     double later_gate_floor) {
+  detail::require(std::isfinite(later_gate_floor) && later_gate_floor >= 0.0,
+                  "the later rounds' gate floor must be finite and >= 0, got ", later_gate_floor);
+  const auto* gated = std::get_if<HbosScreen>(&config.strategy);
+  if (later_gate_floor == 0.0 || gated == nullptr || !gated->gate.enabled ||
+      gated->gate.floor == later_gate_floor)
+    return std::nullopt;
+  ScreenConfig later = config;
+  std::get<HbosScreen>(later.strategy).gate.floor = later_gate_floor;
+  return later;  // valid: it differs from `config` by a finite floor > 0
+}
 
 /// Short name of a strategy's family, for tables and logs.
 [[nodiscard]] inline const char* strategy_name(const ScreenStrategy& s) {
