@@ -218,7 +218,10 @@ HbosParams make_params(const ScoreOptions& o, const CsvLayout& table) {
     }
     const auto it = std::find(table.feature_columns.begin(), table.feature_columns.end(), column);
     if (it == table.feature_columns.end()) {
-      throw std::invalid_argument("--periodic-columns: \"" + selector + "\" is the label column");
+      // Not a feature: either the label or a column --ignore-columns skips.
+      const bool is_label = table.label_column && *table.label_column == column;
+      throw std::invalid_argument("--periodic-columns: \"" + selector + "\" is " +
+                                  (is_label ? "the label column" : "skipped by --ignore-columns"));
     }
     params.features[static_cast<std::size_t>(it - table.feature_columns.begin())] = periodic;
   }

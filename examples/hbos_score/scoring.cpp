@@ -51,9 +51,10 @@ void for_each_feature(const CsvLayout& layout, Eigen::Index d, const FitColumn& 
     try {
       fit_column(j);
     } catch (const InvalidArgument& e) {
+      // The re-thrown InvalidArgument adds the library's "hbos: " again: strip it here once.
       std::string message = e.what();
-      const std::string own = "feature 0";
-      if (message.rfind(own, 0) == 0) message = message.substr(own.size());
+      for (const std::string own : {"hbos: ", "feature 0"})
+        if (message.rfind(own, 0) == 0) message = message.substr(own.size());
       throw InvalidArgument(fmt::format("feature {} (\"{}\"){}{}", j, layout.feature_name(j),
                                         message.empty() || message[0] == ':' ? "" : ": ", message));
     }

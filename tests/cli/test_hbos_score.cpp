@@ -316,6 +316,8 @@ TEST_CASE("hbos-score: bad options exit 2 with a message", "[cli][hbos_score][er
       {{good, "--periodic-columns", "a,,b"}, "empty item"},
       {{good, "--label-column", "label", "--periodic-columns", "label"},
        "\"label\" is the label column"},
+      {{good, "--ignore-columns", "angle", "--periodic-columns", "angle"},
+       "--periodic-columns: \"angle\" is skipped by --ignore-columns"},
       {{good, "--binning", "fixed-width", "--width", "1e-9"}, "more than max_bins"},
   };
   int index = 0;
@@ -326,6 +328,24 @@ TEST_CASE("hbos-score: bad options exit 2 with a message", "[cli][hbos_score][er
     CHECK_THAT(run.err, Catch::Contains(c.message));
     CHECK(run.out.empty());
   }
+}
+
+TEST_CASE("hbos-score: a feature whose range overflows is named once, in both modes",
+          "[cli][hbos_score][errors]") {
+  // numpy's histogram of [-1e308, 1e308] has bins of width inf: the PyOD mode refuses it and
+  // names the feature by index and name, with the library's "hbos: " prefix only once.
+  const fs::path csv = work_dir() / "overflowing_range.csv";
+  {
+    std::ofstream out(csv);
+    out << "wide,b\n1e308,2\n-1e308,3\n1,4\n5,5\n";
+  }
+  const Run pyod = hbos_score("overflow_pyod", {csv.string(), "--mode", "pyod"});
+  INFO(pyod.err);
+  CHECK(pyod.exit_code == 2);
+  CHECK(pyod.out.empty());
+  CHECK_THAT(pyod.err, Catch::Contains("hbos-score: error: hbos: feature 0 (\"wide\"): its range "
+                                       "[-1e+308, 1e+308] overflows a double"));
+  CHECK(pyod.err.find("hbos: ", pyod.err.find("hbos: ") + 1) == std::string::npos);
 }
 
 TEST_CASE("hbos-score: help, version and an unwritable output", "[cli][hbos_score]") {
