@@ -12,6 +12,7 @@
 #include <vector>
 
 #include <nlohmann/json.hpp>
+#include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
 #include "render/textures.hpp"
@@ -206,6 +207,25 @@ TEST_CASE("a repeated ground-truth stamp: the real file's near twin is kept, a f
       << "1.0 0 0 0 0 0 0 1\n2.0 0 0 0 0 0 0 1\n2.0 0.5 0 0 0 0 0 1\n3.0 0 0 0 0 0 0 1\n";
   CHECK_THROWS_WITH(read_tum_trajectory(far),
                     Catch::Contains("far.txt:3: timestamp 2.000000 repeats with a pose 50.0"));
+  fs::remove_all(dir);
+}
+
+TEST_CASE(
+    "textures are decoded from the bytes checked: imread's pixels, and a missing file named") {
+  // The loader reads each file once and decodes those bytes: the murals are imread's images.
+  const TextureLibrary library(default_data_dir());
+  const cv::Mat hall3 =
+      cv::imread((default_data_dir() / "textures" / "slambook2_ch11_3.jpg").string());
+  REQUIRE(hall3.size() == library.get("wall_front").size());
+  CHECK(cv::norm(hall3, library.get("wall_front"), cv::NORM_INF) == 0.0);
+
+  const fs::path dir = scratch("missing_texture");
+  fs::create_directories(dir / "textures");
+  for (const auto& entry : fs::directory_iterator(default_data_dir() / "textures"))
+    if (entry.path().filename() != "fr1_xyz_1305031102.175304.jpg")
+      fs::copy_file(entry.path(), dir / "textures" / entry.path().filename());
+  CHECK_THROWS_WITH(TextureLibrary(dir), Catch::Contains("cannot open texture image") &&
+                                             Catch::Contains("fr1_xyz_1305031102.175304.jpg"));
   fs::remove_all(dir);
 }
 

@@ -25,13 +25,16 @@ cv::Mat load(const std::filesystem::path& dir, const std::string& file) {
   const auto path = dir / "textures" / file;
   // libjpeg decodes a truncated JPEG with a warning and grey rows: the room would be rendered
   // with them, every frame, without a word.
+  // The bytes are read once: checked, then decoded (imdecode runs imread's decoder on them).
   std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError("cannot open texture image " + path.string());
   const std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)),
                                          std::istreambuf_iterator<char>());
+  if (in.bad()) throw InputError("read error in texture image " + path.string());
   if (const std::string why = examples::incomplete_encoding(bytes); !why.empty())
     throw InputError("texture image " + path.string() + " " + why);
-  cv::Mat m = cv::imread(path.string(), cv::IMREAD_COLOR);  // as before: the same pixels
-  if (m.empty()) throw InputError("cannot read texture image " + path.string());
+  cv::Mat m = cv::imdecode(bytes, cv::IMREAD_COLOR);
+  if (m.empty()) throw InputError("cannot decode texture image " + path.string());
   return m;
 }
 
