@@ -12,13 +12,40 @@
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 
+#include <algorithm>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
+#include <string>
+#include <vector>
 
 namespace {
 
 namespace fs = std::filesystem;
 using hbos::cases::CaseSpec;
+
+/// The scene folders an earlier run's manifest lists (names only: a folder name never holds a
+/// path separator or "..", so nothing outside `--out` is named). A manifest that cannot be read
+/// is refused rather than overwritten, since its scenes are unknown.
+std::vector<std::string> listed_scenes(const fs::path& manifest_path) {
+  std::vector<std::string> names;
+  try {
+    std::ifstream in(manifest_path);
+    const nlohmann::json manifest = nlohmann::json::parse(in);
+    for (const auto& scene : manifest.at("scenes")) {
+      const std::string name = scene.at("dir").get<std::string>();
+      if (name.empty() || name == "." || name == ".." ||
+          name.find_first_of("/\\") != std::string::npos)
+        throw hbos::InvalidArgument(fmt::format("scene dir '{}' is not a folder name", name));
+      names.push_back(name);
+    }
+  } catch (const std::exception& e) {
+    throw hbos::InvalidArgument(
+        fmt::format("{}: the earlier run's manifest cannot be read ({}); remove it to rebuild here",
+                    manifest_path.string(), e.what()));
+  }
+  return names;
+}
 
 int run(int argc, char** argv) {
   CLI::App app{"Builds labelled reprojection-residual cases from real TUM frames.",
@@ -80,6 +107,20 @@ int run(int argc, char** argv) {
           fmt::format("--out '{}': cannot create the folder: {}", out,
                       error ? error.message() : std::string("a file of that name exists")));
   }
+  // A full run rewrites the scene folders in place: the old manifest goes first, so that a run
+  // cut off midway leaves no cases.json vouching for a mix of new and old scenes (the readers
+  // refuse a folder without one), and the scenes it listed that this grid no longer has go
+  // last, before the new manifest is written.
+  const fs::path manifest_path = fs::path(out) / "cases.json";
+  std::vector<std::string> old_scenes;
+  if (only.empty() && fs::exists(manifest_path)) {
+    old_scenes = listed_scenes(manifest_path);
+    std::error_code error;
+    fs::remove(manifest_path, error);
+    if (error)
+      throw hbos::InvalidArgument(
+          fmt::format("--out '{}': cannot remove the old cases.json: {}", out, error.message()));
+  }
   nlohmann::ordered_json manifest;
   manifest["format"] = 1;
   manifest["grid"] = grid;
@@ -140,7 +181,15 @@ int run(int argc, char** argv) {
   manifest["cases"] = cases;
   manifest["scenes"] = scenes;
   if (only.empty()) {
-    hbos::examples::write_file_atomically(fs::path(out) / "cases.json", manifest.dump(1) + "\n");
+    for (const std::string& scene : old_scenes) {
+      const bool kept = std::any_of(specs.begin(), specs.end(),
+                                    [&](const CaseSpec& spec) { return spec.name == scene; });
+      if (!kept) {
+        fs::remove_all(fs::path(out) / scene);
+        std::cerr << fmt::format("removed scene '{}': not in the {} grid\n", scene, grid);
+      }
+    }
+    hbos::examples::write_file_atomically(manifest_path, manifest.dump(1) + "\n");
   }
   return 0;
 }
