@@ -86,8 +86,10 @@ std::vector<Cell> grid_cells(const BenchSettings& settings) {
 std::string sequence_dir(const BenchSettings& settings, const std::string& scenario,
                          std::uint64_t seed) {
   const std::string length = settings.frames > 0 ? fmt::format("{}f", settings.frames) : "full";
+  // The scenario's own cast keeps the name it always had, so existing caches stay valid.
+  const std::string cast = settings.people > 0 ? fmt::format("_{}people", settings.people) : "";
   return (std::filesystem::path(settings.cache_dir) /
-          fmt::format("{}_seed{}_{}", scenario, seed, length))
+          fmt::format("{}_seed{}_{}{}", scenario, seed, length, cast))
       .string();
 }
 

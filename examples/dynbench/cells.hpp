@@ -23,6 +23,10 @@ struct BenchSettings {
   std::vector<std::string> variants = {"eroded", "person_missed"};
   std::vector<std::uint64_t> seeds = {1, 2};
   int frames = 300;  ///< frames rendered and tracked per sequence; 0 = the whole trajectory
+  /// People in each rendered scene, 1..3; 0 = the scenario's own cast (2). The people beyond the
+  /// cast's first are, in order, the one who sits and swivels and the one who walks along the
+  /// back of the room (examples/render, scenario.cpp).
+  int people = 0;
   /// Screens run (names of screen_strategy_names(); `none` = refine on everything). Empty: all.
   std::vector<std::string> screens;
   /// Without a mask, run every selected screen, not only `none` and `default`: the comparison
@@ -69,7 +73,8 @@ struct Cell {
 /// `every_screen_unmasked`: then every selected screen runs without a mask too.
 [[nodiscard]] std::vector<Cell> grid_cells(const BenchSettings& settings);
 
-/// The rendered sequence's folder in the cache: `<scenario>_seed<S>_<N>f` (`full` for N = 0).
+/// The rendered sequence's folder in the cache: `<scenario>_seed<S>_<N>f` (`full` for N = 0),
+/// with `_<P>people` after it when `people` is set.
 [[nodiscard]] std::string sequence_dir(const BenchSettings& settings, const std::string& scenario,
                                        std::uint64_t seed);
 

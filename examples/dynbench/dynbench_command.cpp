@@ -81,6 +81,10 @@ void add_options(CLI::App& app, CommandOptions& o) {
   app.add_option("--frames", s.frames, "frames per sequence (0 = the whole trajectory)")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
+  app.add_option("--people", s.people,
+                 "people in each rendered scene, 1..3 (default: the scenario's own, 2); the "
+                 "sequences are cached apart")
+      ->check(CLI::Range(1, 3));
   app.add_option("--screens", s.screens,
                  "comma-separated screens (default: all; none = no screen, i.e. 'mask only' with "
                  "a mask)")

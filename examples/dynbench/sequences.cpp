@@ -115,6 +115,10 @@ std::string ensure_sequence(const BenchSettings& settings, const std::string& sc
                                    "--frames",
                                    std::to_string(settings.frames),
                                    "--quiet"};
+  if (settings.people > 0) {
+    argv.emplace_back("--people");
+    argv.emplace_back(std::to_string(settings.people));
+  }
   if (fs::exists(dir)) argv.emplace_back("--overwrite");
   const std::string log = dir + ".log";
   const int status = run_logged(argv, log);

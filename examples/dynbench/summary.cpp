@@ -122,14 +122,15 @@ std::string table_markdown(const std::vector<TableRow>& rows, const BenchSetting
     seeds += (seeds.empty() ? "" : ", ") + fmt::format("{}", s);
   const slam::Config& c = settings.base;
   std::string md = fmt::format(
-      "Rendered sequences ({} frames each{}), seeds {}; tracker {}, camera {}, rough pose {} ({} "
+      "Rendered sequences ({} frames each{}{}), seeds {}; tracker {}, camera {}, rough pose {} ({} "
       "px), {} screening rounds{}. Each cell: mean ± sample standard deviation over the seeds. "
       "Dynamic = a keypoint of the match on a rendered person or carried object (objects/ ids). "
       "Times: per-frame medians [ms], then the mean over seeds.\n\n",
       settings.frames > 0 ? fmt::format("{}", settings.frames) : std::string("all"),
-      settings.frames > 0 ? "" : ", whole trajectories", seeds, slam::to_string(c.tracker),
-      settings.camera, slam::to_string(c.rough_pose.method), c.rough_pose.ransac_threshold_px,
-      c.screen.rounds, non_default_settings(c));
+      settings.frames > 0 ? "" : ", whole trajectories",
+      settings.people > 0 ? fmt::format(", {} people in each scene", settings.people) : "", seeds,
+      slam::to_string(c.tracker), settings.camera, slam::to_string(c.rough_pose.method),
+      c.rough_pose.ransac_threshold_px, c.screen.rounds, non_default_settings(c));
   md +=
       "| scenario | mask | screen | ATE RMSE [cm] | RPE [mm/frame] | dynamic matches kept [%] | "
       "static matches dropped [%] | frames tracked [%] | mask [ms] | motion est. [ms] | screen "
@@ -181,6 +182,8 @@ nlohmann::json table_json(const std::vector<TableRow>& rows,
                    {"mask_variants", settings.variants},
                    {"seeds", settings.seeds},
                    {"frames", settings.frames},
+                   {"people", settings.people > 0 ? nlohmann::json(settings.people)
+                                                  : nlohmann::json("the scenario's own")},
                    {"screens", screens_in_order(settings.screens)},
                    {"camera", settings.camera},
                    {"tracker", slam::to_string(settings.base.tracker)},

@@ -248,6 +248,40 @@ TEST_CASE("dynbench: bad input exits 2 with the reason", "[dynbench]") {
   CHECK_THAT(err, Catch::Contains("an empty path names no file"));
 }
 
+TEST_CASE("dynbench --people renders its own sequences, cached apart", "[dynbench]") {
+  ScratchDir scratch("dynbench_people");
+  hbos::dynbench::BenchSettings s;
+  s.cache_dir = "cache";
+  CHECK(fs::path(hbos::dynbench::sequence_dir(s, "walking_xyz", 4)).filename() ==
+        "walking_xyz_seed4_300f");  // the scenario's own cast: the name caches always had
+  s.people = 3;
+  CHECK(fs::path(hbos::dynbench::sequence_dir(s, "walking_xyz", 4)).filename() ==
+        "walking_xyz_seed4_300f_3people");
+
+  // A stand-in renderer that fails: the error names the command it was given.
+  const std::string renderer = scratch.file("failing-renderer.sh");
+  {
+    std::ofstream script(renderer);
+    script << "#!/bin/sh\necho \"stand-in renderer: $*\"\nexit 3\n";
+  }
+  fs::permissions(renderer, fs::perms::owner_all);
+  std::string err;
+  CHECK(dynbench({"--scenarios", "walking_rpy", "--seeds", "2", "--frames", "5", "--people", "3",
+                  "--renderer", renderer, "--cache", scratch.file("cache"), "--out",
+                  scratch.file("out"), "--quiet"},
+                 nullptr, &err) != hbos::dynbench::kDynbenchOk);
+  CHECK_THAT(err,
+             Catch::Contains("--scenario walking_rpy --seed 2 --out ") &&
+                 Catch::Contains("walking_rpy_seed2_5f_3people --frames 5 --quiet --people 3"));
+
+  for (const char* people : {"0", "4", "two"}) {
+    err.clear();
+    CHECK(dynbench({"--people", people, "--quiet", "--out", scratch.file("o")}, nullptr, &err) ==
+          hbos::dynbench::kDynbenchBadInput);
+    CHECK_THAT(err, Catch::Contains("--people"));
+  }
+}
+
 TEST_CASE("dynbench --help names the front end's on/off settings and their defaults",
           "[dynbench]") {
   std::string out, err;
