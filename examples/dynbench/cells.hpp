@@ -23,9 +23,9 @@ struct BenchSettings {
   std::vector<std::string> variants = {"eroded", "person_missed"};
   std::vector<std::uint64_t> seeds = {1, 2};
   int frames = 300;  ///< frames rendered and tracked per sequence; 0 = the whole trajectory
-  /// People in each rendered scene, 1..3; 0 = the scenario's own cast (2). The people beyond the
-  /// cast's first are, in order, the one who sits and swivels and the one who walks along the
-  /// back of the room (examples/render, scenario.cpp).
+  /// People in each rendered scene, 1..3: the first of the scenario's cast of three
+  /// (examples/render/render/scenario.cpp); 0 = the scenario's own number, 2. The third is, in
+  /// every scenario, one who walks along the back of the room.
   int people = 0;
   /// Screens run (names of screen_strategy_names(); `none` = refine on everything). Empty: all.
   std::vector<std::string> screens;
