@@ -23,7 +23,7 @@ struct BenchSettings {
   std::vector<std::string> variants = {"eroded", "person_missed"};
   std::vector<std::uint64_t> seeds = {1, 2};
   int frames = 300;  ///< frames rendered and tracked per sequence; 0 = the whole trajectory
-  /// People in each rendered scene, 1..3: the first of the scenario's cast of three
+  /// People in each rendered scene, 1..3: the first N of the scenario's cast of three
   /// (examples/render/render/scenario.cpp); 0 = the scenario's own number, 2. The third is, in
   /// every scenario, one who walks along the back of the room.
   int people = 0;
