@@ -292,6 +292,19 @@ TEST_CASE("bad input: range errors print their bound as a number, not 309 digits
   CHECK_THAT(r.err, !Contains("17976931348623157"));
 }
 
+TEST_CASE("bad input: hbos-slam names a prediction limit out of its range",
+          "[bad_inputs][hbos_slam]") {
+  const fs::path dir = scratch("prediction_limit");
+  const std::string out = (dir / "out").string();
+  Run r = run(dir, kSlam, {"--prediction-limit-m", "-0.1", "--quiet", "--out", out});
+  CHECK(r.exit_code == 2);
+  CHECK_THAT(r.err, Contains("--prediction-limit-m") && Contains("-0.1"));
+  r = run(dir, kSlam, {"--prediction-limit-deg", "200", "--quiet", "--out", out});
+  CHECK(r.exit_code == 2);
+  CHECK_THAT(r.err, Contains("--prediction-limit-deg") && Contains("200"));
+  CHECK_FALSE(fs::exists(fs::path(out) / "trajectory.txt"));
+}
+
 // ---- hbos-eval ---------------------------------------------------------------------------------
 
 TEST_CASE("bad input: hbos-eval refuses implausible stamps and positions with file:line",

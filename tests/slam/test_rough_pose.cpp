@@ -1,6 +1,7 @@
 // The rough pose (frontend/rough_pose.hpp): PnP RANSAC, its refit checked against its own
 // inliers, and its second consensus from the tracks the screen mostly kept
-// (RoughPoseConfig::history_consensus); the jump limit both trackers share.
+// (RoughPoseConfig::history_consensus); the jump limit both trackers share, and its bound on
+// how far a consensus may land from the constant-velocity prediction.
 
 #include <catch2/catch.hpp>
 
@@ -137,7 +138,7 @@ TEST_CASE("rough pose: a RANSAC refit that leaves its own inliers is no consensu
   const hbos::PinholeCamerad camera = hbos::slam::camera_preset("tum3").pinhole();
   hbos::slam::RoughPoseConfig unchecked;
   unchecked.check_refit = false;
-  const hbos::slam::JumpLimit no_limit{1e9, 360.0};
+  const hbos::slam::JumpLimit no_limit{1e9, 360.0, 1e9, 360.0};
   // The premise (OpenCV 4.6): solvePnPRansac's refit lands metres away from a motion of 3.4 mm.
   const hbos::slam::RoughPose wild = hbos::slam::RoughPoseEstimator(unchecked, camera, no_limit)
                                          .estimate(pair.points, pair.observed, pair.prediction);
@@ -189,6 +190,58 @@ TEST_CASE("jump limit: a step beyond either bound is refused and one within both
                       .toRotationMatrix();
   CHECK(limit.exceeded_by(step));
   CHECK(limit.exceeded_by(step.inverse()));  // backwards as far
+}
+
+TEST_CASE("jump limit: the bound on the change of motion is its own",
+          "[frontend][rough_pose]") {
+  hbos::slam::JumpLimit limit;
+  limit.max_from_prediction_m = 0.05;
+  limit.max_from_prediction_deg = 10.0;
+  Eigen::Isometry3d step = Eigen::Isometry3d::Identity();
+  step.translation() = Eigen::Vector3d(0.1, 0.0, 0.0);
+  CHECK_FALSE(limit.exceeded_by(step));  // a 10 cm step is motion a camera makes
+  CHECK(limit.departs_from_prediction(step));  // but not a 10 cm change of it
+  step.translation() = Eigen::Vector3d(0.0, 0.03, 0.04);  // 5 cm less a hair, below
+  step.translation() *= 0.999;
+  CHECK_FALSE(limit.departs_from_prediction(step));
+  step.translation().setZero();
+  step.linear() = Eigen::AngleAxisd(11.0 * M_PI / 180.0, Eigen::Vector3d::UnitY())
+                      .toRotationMatrix();
+  CHECK(limit.departs_from_prediction(step));
+  CHECK_FALSE(limit.exceeded_by(step));
+}
+
+TEST_CASE("rough pose: a consensus further from the prediction than the limit gives way to it",
+          "[frontend][rough_pose]") {
+  for (const unsigned seed : {1U, 2U, 3U, 4U, 5U}) {
+    INFO("seed " << seed);
+    // The person outnumbers the statics and takes RANSAC's consensus; the prediction is the
+    // camera's own motion.
+    const TwoMotions s = two_motions(100, 160, seed);
+    const hbos::slam::RoughPoseConfig config;
+    const Eigen::Isometry3d prediction = s.camera_motion;
+
+    const hbos::slam::RoughPoseEstimator loose(config, hbos::PinholeCamerad{},
+                                               hbos::slam::JumpLimit{});  // 30 cm, 30 deg
+    const hbos::slam::RoughPose followed = loose.estimate(s.points, s.observed, prediction);
+    REQUIRE(followed.from_ransac);
+    const double departure = translation_error(followed.T_cur_prev, prediction);
+    REQUIRE(departure > 0.02);  // the premise: the person's consensus is centimetres away
+
+    hbos::slam::JumpLimit tight;
+    tight.max_from_prediction_m = departure / 2.0;
+    const hbos::slam::RoughPoseEstimator held(config, hbos::PinholeCamerad{}, tight);
+    const hbos::slam::RoughPose kept = held.estimate(s.points, s.observed, prediction);
+    CHECK_FALSE(kept.from_ransac);
+    CHECK(kept.T_cur_prev.isApprox(prediction));
+
+    // The same limit leaves a consensus of statics alone: it lands within a millimetre or so
+    // of the prediction.
+    const TwoMotions still = two_motions(100, 0, seed);
+    const hbos::slam::RoughPose own = held.estimate(still.points, still.observed, prediction);
+    CHECK(own.from_ransac);
+    CHECK(translation_error(own.T_cur_prev, still.camera_motion) < 0.005);
+  }
 }
 
 TEST_CASE("rough pose: a track's static trust needs screenings that kept it",

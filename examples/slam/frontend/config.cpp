@@ -63,7 +63,10 @@ nlohmann::json to_json(const LeverageGuardConfig& guard) {
 }
 
 nlohmann::json to_json(const JumpLimit& limit) {
-  return {{"max_m", limit.max_m}, {"max_deg", limit.max_deg}};
+  return {{"max_m", limit.max_m},
+          {"max_deg", limit.max_deg},
+          {"max_from_prediction_m", limit.max_from_prediction_m},
+          {"max_from_prediction_deg", limit.max_from_prediction_deg}};
 }
 
 const char* to_string(RoughPoseMethod method) {

@@ -48,6 +48,15 @@ inline void add_front_end_options(CLI::App& app, Config& c) {
          "refinement; 0 = the first round's (chi^2's 2.447) in every round (default: the "
          "tracker's own: frame 1.22 = 3 x the least noise scale, map 0; docs/results.md)")
       ->check(CLI::Range(0.0, 100.0));
+  app.add_option("--prediction-limit-m", c.jump_limit.max_from_prediction_m,
+                 "both trackers: the farthest [m] a RANSAC rough pose may put the camera from the "
+                 "constant-velocity prediction; beyond it the prediction is the rough pose")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 10.0));
+  app.add_option("--prediction-limit-deg", c.jump_limit.max_from_prediction_deg,
+                 "the same for the orientation [deg]")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 180.0));
   app.add_option("--rounds", c.screen.rounds, "screen -> refine -> re-screen rounds")
       ->capture_default_str()
       ->check(CLI::Range(1, 20));

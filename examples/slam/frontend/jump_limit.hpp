@@ -13,13 +13,27 @@ struct JumpLimit {
   double max_m = 0.3;
   /// [deg] per frame: 900 deg/s at 30 frames/s, likewise
   double max_deg = 30.0;
+  /// [m] how far a RANSAC consensus may put the camera from the constant-velocity prediction:
+  /// a frame's change of velocity, which for a real camera is far smaller than its motion.
+  double max_from_prediction_m = 0.3;
+  /// [deg] likewise for the orientation.
+  double max_from_prediction_deg = 30.0;
 
-  /// True when `step` (a relative pose: one frame's motion, or a pose's distance from its
-  /// prediction) moves further than the limit.
+  /// True when `step` (a relative pose: one frame's motion) moves further than the limit.
   [[nodiscard]] bool exceeded_by(const Eigen::Isometry3d& step) const {
+    return beyond(step, max_m, max_deg);
+  }
+  /// True when `deviation` (a pose's distance from its constant-velocity prediction) is further
+  /// than a camera's velocity changes in a frame.
+  [[nodiscard]] bool departs_from_prediction(const Eigen::Isometry3d& deviation) const {
+    return beyond(deviation, max_from_prediction_m, max_from_prediction_deg);
+  }
+
+ private:
+  static bool beyond(const Eigen::Isometry3d& step, double metres, double degrees_max) {
     const double degrees =
         Eigen::AngleAxisd(step.linear()).angle() * 180.0 / 3.14159265358979323846;
-    return step.translation().norm() > max_m || degrees > max_deg;
+    return step.translation().norm() > metres || degrees > degrees_max;
   }
 };
 
