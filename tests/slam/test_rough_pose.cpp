@@ -192,21 +192,20 @@ TEST_CASE("jump limit: a step beyond either bound is refused and one within both
   CHECK(limit.exceeded_by(step.inverse()));  // backwards as far
 }
 
-TEST_CASE("jump limit: the bound on the change of motion is its own",
-          "[frontend][rough_pose]") {
+TEST_CASE("jump limit: the bound on the change of motion is its own", "[frontend][rough_pose]") {
   hbos::slam::JumpLimit limit;
   limit.max_from_prediction_m = 0.05;
   limit.max_from_prediction_deg = 10.0;
   Eigen::Isometry3d step = Eigen::Isometry3d::Identity();
   step.translation() = Eigen::Vector3d(0.1, 0.0, 0.0);
-  CHECK_FALSE(limit.exceeded_by(step));  // a 10 cm step is motion a camera makes
-  CHECK(limit.departs_from_prediction(step));  // but not a 10 cm change of it
+  CHECK_FALSE(limit.exceeded_by(step));                   // a 10 cm step is motion a camera makes
+  CHECK(limit.departs_from_prediction(step));             // but not a 10 cm change of it
   step.translation() = Eigen::Vector3d(0.0, 0.03, 0.04);  // 5 cm less a hair, below
   step.translation() *= 0.999;
   CHECK_FALSE(limit.departs_from_prediction(step));
   step.translation().setZero();
-  step.linear() = Eigen::AngleAxisd(11.0 * M_PI / 180.0, Eigen::Vector3d::UnitY())
-                      .toRotationMatrix();
+  step.linear() =
+      Eigen::AngleAxisd(11.0 * M_PI / 180.0, Eigen::Vector3d::UnitY()).toRotationMatrix();
   CHECK(limit.departs_from_prediction(step));
   CHECK_FALSE(limit.exceeded_by(step));
 }
