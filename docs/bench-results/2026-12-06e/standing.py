@@ -56,7 +56,7 @@ def main():
                 rows[(scenario, mask)][s].append(v)
         verdicts = defaultdict(int)
         for (scenario, mask), by in sorted(rows.items()):
-            if "default" not in by:
+            if "default" not in by or len(by) < 2:  # no other screen ran in this row
                 continue
             d = by["default"]
             best = min((s for s in by if s != "default"), key=lambda s: statistics.mean(by[s]))
