@@ -13,8 +13,11 @@ struct JumpLimit {
   double max_m = 0.3;
   /// [deg] per frame: 900 deg/s at 30 frames/s, likewise
   double max_deg = 30.0;
-  /// [m] how far a RANSAC consensus may put the camera from the constant-velocity prediction:
-  /// a frame's change of velocity, which for a real camera is far smaller than its motion.
+  /// [m] how far a RANSAC consensus may put the camera from the constant-velocity prediction.
+  /// A real camera's change of velocity in a frame is far smaller than its motion, but the
+  /// prediction is the tracker's own last step and carries its drift: a tighter bound refused
+  /// the map tracker's recoveries from drift as often as it stopped a crowd's consensus
+  /// (docs/results.md, stop 42), so by default it is as wide as the bound on motion.
   double max_from_prediction_m = 0.3;
   /// [deg] likewise for the orientation.
   double max_from_prediction_deg = 30.0;

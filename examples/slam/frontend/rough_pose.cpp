@@ -87,8 +87,9 @@ RoughPose RoughPoseEstimator::estimate(const std::vector<Eigen::Vector3d>& point
                                        const Eigen::Isometry3d& constant_velocity,
                                        const std::vector<OutlierShare>& memory) const {
   const RoughPose pose = best_consensus(points_prev, observed, constant_velocity, memory);
-  // A consensus that puts the camera further from the prediction than any camera moves in a
-  // frame is a wrong one (e.g. a person holding a third of the matches): the prediction stays.
+  // A consensus that puts the camera further from the prediction than the jump limit allows
+  // (JumpLimit::departs_from_prediction) is a wrong one, e.g. a person holding a third of the
+  // matches: the prediction stays.
   if (pose.from_ransac &&
       jump_limit_.departs_from_prediction(pose.T_cur_prev * constant_velocity.inverse()))
     return RoughPose{constant_velocity};
