@@ -136,6 +136,8 @@ nlohmann::json cell_settings(const BenchSettings& settings, const Cell& cell,
   // Only the map tracker relocalises: the frame tracker's cells keep their keys.
   if (c.tracker == slam::TrackerKind::kMap)
     key["relocaliser_refit_check"] = c.map.relocalisation.check_refit;
+  // Keyed only when on, so the cells of runs before the option existed stay valid.
+  if (c.map.point_noise.enabled) key["point_noise"] = slam::to_json(c.map.point_noise);
   return key;
 }
 

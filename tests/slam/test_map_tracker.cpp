@@ -428,6 +428,21 @@ TEST_CASE("map tracker with --local-ba: every keyframe after the first is adjust
   CHECK(adjusted == inserted);
 }
 
+TEST_CASE("map tracker with --point-noise: points are weighed by their noise, tracking holds",
+          "[map][tracking][point_noise]") {
+  // What it does on the rendered sequences: docs/results.md, "Each map point's own noise".
+  slam::Config config;
+  config.scenario.add_person = true;
+  config.mask.source = slam::MaskSource::kDegraded;
+  const Outcome without = track_bundled(config, 37);
+  config.map.point_noise.enabled = true;
+  const Outcome with = track_bundled(config, 37);
+  CHECK(with.run.lost_frames == 0);
+  CHECK(with.evaluation.ate.stats.rmse < 0.02);
+  // The weights change the poses: the option reaches the refinement.
+  CHECK(with.evaluation.ate.stats.rmse != without.evaluation.ate.stats.rmse);
+}
+
 TEST_CASE("map tracker: a black frame is lost without a pose, then relocalised",
           "[map][relocalisation]") {
   slam::Config config;

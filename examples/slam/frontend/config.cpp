@@ -69,6 +69,12 @@ nlohmann::json to_json(const JumpLimit& limit) {
           {"max_from_prediction_deg", limit.max_from_prediction_deg}};
 }
 
+nlohmann::json to_json(const PointNoiseConfig& noise) {
+  if (!noise.enabled) return false;
+  return {
+      {"memory", noise.memory}, {"tolerance", noise.tolerance}, {"min_frames", noise.min_frames}};
+}
+
 const char* to_string(RoughPoseMethod method) {
   return method == RoughPoseMethod::kRansac ? "ransac" : "constant-velocity";
 }

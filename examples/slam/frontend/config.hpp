@@ -254,6 +254,9 @@ struct Config {
 [[nodiscard]] nlohmann::json to_json(const LeverageGuardConfig& guard);
 /// The limit as one object (run summaries and cache keys).
 [[nodiscard]] nlohmann::json to_json(const JumpLimit& limit);
+/// The map tracker's per-point noise as one object (run summaries and cache keys), or `false`
+/// when off.
+[[nodiscard]] nlohmann::json to_json(const PointNoiseConfig& noise);
 /// `ransac`, `constant-velocity`.
 [[nodiscard]] const char* to_string(RoughPoseMethod method);
 [[nodiscard]] RoughPoseMethod parse_rough_pose_method(const std::string& name);

@@ -39,6 +39,19 @@ inline void add_front_end_options(CLI::App& app, Config& c) {
              "map tracker: bundle-adjust the new keyframe, its covisible neighbours and the "
              "points the screen vouches for whenever a keyframe is inserted "
              "(docs/map_tracking.md)");
+  add_switch(app, "point-noise", c.map.point_noise.enabled,
+             "map tracker: the final refinement weighs each map point by the noise its residuals "
+             "have shown over the last frames, where that stands out from the frame's points "
+             "(frontend/map/point_noise.hpp)");
+  app.add_option("--point-noise-tolerance", c.map.point_noise.tolerance,
+                 "with --point-noise: a point keeps its full weight up to this many times the "
+                 "median mean squared residual of the frame's refined points")
+      ->capture_default_str()
+      ->check(CLI::Range(1.0, 100.0));
+  app.add_option("--point-noise-memory", c.map.point_noise.memory,
+                 "with --point-noise: weight of the past per frame in a point's running mean")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 0.99));
   add_switch(app, "huber-from-noise", c.refinement.huber_from_noise,
              "scale the pose refinement's Huber width (2.447 px/sigma, ORB-SLAM2's) by the noise "
              "the refined matches have, never wider (docs/slam_demo.md)");

@@ -5,6 +5,8 @@
 /// The stages shared with the frame tracker (ORB, rough pose, screen, refinement) keep their own
 /// groups in frontend/config.hpp.
 
+#include "frontend/map/point_noise.hpp"
+
 #include <limits>
 
 namespace hbos::slam {
@@ -122,6 +124,7 @@ struct MapConfig {
   RelocalisationConfig relocalisation;
   HistoryConfig history;
   LocalBundleConfig local_bundle;
+  PointNoiseConfig point_noise;
 };
 
 }  // namespace hbos::slam

@@ -5,6 +5,7 @@
 /// viewing direction and the distance range over which ORB can detect it — plus the screen's
 /// memory (screening_history.hpp).
 
+#include "frontend/map/point_noise.hpp"
 #include "frontend/map/screening_history.hpp"
 
 #include <Eigen/Core>
@@ -37,6 +38,7 @@ struct MapPoint {
   float max_distance_m = 0.f;
   int reference_keyframe = 0;  ///< the keyframe that created it
   ScreeningHistory history;
+  PointNoise noise;     ///< its residuals under the refined poses (point_noise.hpp)
   bool culled = false;  ///< screened out again and again: never matched or used again
   /// Made from a keypoint on the composited person (the label): read by statistics only.
   bool on_person = false;

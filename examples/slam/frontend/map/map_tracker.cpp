@@ -159,6 +159,7 @@ TrackResult MapTracker::track(const Frame& frame) {
 
   // 8. Screening history: every screened point remembers the verdict; points screened out
   //    again and again are culled.
+  if (config_.map.point_noise.enabled) record_point_noise(m, out.screen, T_camera_world);
   update_history(m, out.screen, point_of);
 
   // 9. Tracked or lost, the keyframe decision, and this frame as the next one's last frame.
@@ -325,8 +326,34 @@ void MapTracker::refine_on_survivors(const Matched& m, ScreenOutcome& screen,
   const auto start = Clock::now();
   std::vector<std::uint8_t> use = screen.inlier;
   keep_out_provisional(m.evidence.provisional, static_cast<int>(config_.screen.min_inliers), use);
-  refiner_.refine(m.points_world, m.observed, m.sigma, use, T);
+  if (config_.map.point_noise.enabled) {
+    refiner_.refine(m.points_world, m.observed, refinement_sigma(m, use), use, T);
+  } else {
+    refiner_.refine(m.points_world, m.observed, m.sigma, use, T);
+  }
   screen.refine_us += std::chrono::duration<double, std::micro>(Clock::now() - start).count();
+}
+
+std::vector<double> MapTracker::refinement_sigma(const Matched& m,
+                                                 const std::vector<std::uint8_t>& use) const {
+  std::vector<PointNoise> noise;
+  noise.reserve(m.point.size());
+  for (const int id : m.point) noise.push_back(map_.point(id).noise);
+  std::vector<double> sigma = m.sigma;
+  widen_by_point_noise(noise, use, config_.map.point_noise, sigma);
+  return sigma;
+}
+
+void MapTracker::record_point_noise(const Matched& m, const ScreenOutcome& screen,
+                                    const Eigen::Isometry3d& T_camera_world) {
+  const double memory = config_.map.point_noise.memory;
+  for (std::size_t i = 0; i < m.point.size(); ++i) {
+    if (i >= screen.inlier.size() || screen.inlier[i] == 0) continue;
+    const Eigen::Vector3d p_c = T_camera_world * m.points_world[i];
+    if (!(p_c.z() > 0.0)) continue;
+    const Eigen::Vector2d e = (m.observed[i] - refiner_.camera().project(p_c)) / m.sigma[i];
+    map_.point(m.point[i]).noise.record(e.squaredNorm(), memory);
+  }
 }
 
 void MapTracker::update_history(const Matched& m, const ScreenOutcome& screen,

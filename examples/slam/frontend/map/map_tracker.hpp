@@ -92,6 +92,13 @@ class MapTracker {
   Matched gather(const Frame& frame, const Features& current, const std::vector<int>& point_of,
                  TrackResult& out) const;
   void refine_on_survivors(const Matched& m, ScreenOutcome& screen, Eigen::Isometry3d& T) const;
+  /// The sigmas the final refinement uses: the octave's, widened where a point's own noise
+  /// (PointNoiseConfig) stands out from the frame's refined points.
+  [[nodiscard]] std::vector<double> refinement_sigma(const Matched& m,
+                                                     const std::vector<std::uint8_t>& use) const;
+  /// Each survivor's squared whitened residual under the final pose, into its point's noise.
+  void record_point_noise(const Matched& m, const ScreenOutcome& screen,
+                          const Eigen::Isometry3d& T_camera_world);
   void update_history(const Matched& m, const ScreenOutcome& screen, std::vector<int>& point_of);
   void finish(const Frame& frame, Features current, const std::vector<int>& point_of,
               const Eigen::Isometry3d& T_camera_world, TrackResult& out);

@@ -1,0 +1,137 @@
+// The map tracker's per-point noise (frontend/map/point_noise.hpp): the running mean each map
+// point keeps of its squared whitened residual, and how the final refinement widens the sigma of
+// the points whose mean stands out from the frame's.
+
+#include <catch2/catch.hpp>
+
+#include "frontend/map/point_noise.hpp"
+
+#include <hbos/error.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <random>
+#include <vector>
+
+namespace slam = hbos::slam;
+
+namespace {
+
+slam::PointNoise noise_of(double mean_square, int frames) {
+  slam::PointNoise n;
+  for (int k = 0; k < frames; ++k) n.record(mean_square, 0.8);  // a constant keeps its mean
+  return n;
+}
+
+}  // namespace
+
+TEST_CASE("point noise: the first record is the mean, then the past fades by `memory`",
+          "[map][point_noise]") {
+  slam::PointNoise n;
+  CHECK(n.frames() == 0);
+  CHECK(n.mean_square() == 0.0);
+  n.record(4.0, 0.8);
+  CHECK(n.mean_square() == 4.0);
+  n.record(9.0, 0.8);
+  CHECK(n.mean_square() == Approx(0.8 * 4.0 + 0.2 * 9.0));
+  CHECK(n.frames() == 2);
+  // A residual that is not finite (a point behind a wrong pose) tells nothing: not recorded.
+  n.record(std::numeric_limits<double>::infinity(), 0.8);
+  n.record(std::numeric_limits<double>::quiet_NaN(), 0.8);
+  CHECK(n.frames() == 2);
+  CHECK(n.mean_square() == Approx(0.8 * 4.0 + 0.2 * 9.0));
+}
+
+TEST_CASE("point noise: points beyond tolerance x the median get the weight of their noise",
+          "[map][point_noise]") {
+  slam::PointNoiseConfig c;  // tolerance 2, min_frames 2
+  std::vector<slam::PointNoise> noise;
+  for (int i = 0; i < 20; ++i) noise.push_back(noise_of(1.0 + 0.01 * i, 3));  // median 1.10
+  noise.push_back(noise_of(8.8, 3));   // 4 x the reference 2 x 1.10: weight 1/4
+  noise.push_back(noise_of(2.2, 3));   // exactly at the reference: kept as it is
+  noise.push_back(noise_of(50.0, 1));  // one frame only: its noise does not count yet
+  std::vector<std::uint8_t> use(noise.size(), 1);
+  std::vector<double> sigma(noise.size(), 1.5);
+  slam::widen_by_point_noise(noise, use, c, sigma);
+  const double median = 1.11;  // 22 known values: the upper middle one (nth_element at 11)
+  for (int i = 0; i < 20; ++i) CHECK(sigma[static_cast<std::size_t>(i)] == 1.5);
+  CHECK(sigma[20] == Approx(1.5 * std::sqrt(8.8 / (2.0 * median))));
+  CHECK(sigma[21] == 1.5);
+  CHECK(sigma[22] == 1.5);
+  // The weight 1/sigma^2 falls as the reference over the point's own mean square.
+  CHECK(1.5 * 1.5 / (sigma[20] * sigma[20]) == Approx(2.0 * median / 8.8));
+}
+
+TEST_CASE("point noise: the widening is the same whatever the frame's noise level",
+          "[map][point_noise]") {
+  // A noisier frame (every mean square k times larger) must not down-weight every point: the
+  // reference is the frame's own median.
+  std::mt19937 rng(7);
+  std::gamma_distribution<double> spread(1.5, 1.0);
+  slam::PointNoiseConfig c;
+  for (int trial = 0; trial < 20; ++trial) {
+    const std::size_t n = 10 + static_cast<std::size_t>(trial) * 17;
+    std::vector<double> q(n);
+    for (double& v : q) v = spread(rng);
+    std::vector<std::uint8_t> use(n);
+    for (std::size_t i = 0; i < n; ++i) use[i] = i % 5 != 0 ? 1 : 0;
+    const double k = 0.25 * (trial + 1);
+    std::vector<slam::PointNoise> base, scaled;
+    for (const double v : q) {
+      base.push_back(noise_of(v, 2));
+      scaled.push_back(noise_of(k * v, 2));
+    }
+    std::vector<double> sigma_base(n, 1.0), sigma_scaled(n, 1.0);
+    slam::widen_by_point_noise(base, use, c, sigma_base);
+    slam::widen_by_point_noise(scaled, use, c, sigma_scaled);
+    int widened = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      CHECK(sigma_scaled[i] == Approx(sigma_base[i]).epsilon(1e-12));
+      CHECK(sigma_base[i] >= 1.0);  // never narrower than the octave's sigma
+      widened += sigma_base[i] > 1.0 ? 1 : 0;
+    }
+    // With 4 in 5 used, fewer than 10 known points leave every sigma as it was.
+    const std::size_t used = static_cast<std::size_t>(std::count(use.begin(), use.end(), 1));
+    if (used < 10) CHECK(widened == 0);
+  }
+}
+
+TEST_CASE("point noise: unused points set no reference, but are widened by it",
+          "[map][point_noise]") {
+  slam::PointNoiseConfig c;
+  std::vector<slam::PointNoise> noise;
+  for (int i = 0; i < 10; ++i) noise.push_back(noise_of(1.0, 2));
+  for (int i = 0; i < 30; ++i) noise.push_back(noise_of(100.0, 2));  // rejected: not used
+  std::vector<std::uint8_t> use(noise.size(), 0);
+  for (int i = 0; i < 10; ++i) use[static_cast<std::size_t>(i)] = 1;
+  std::vector<double> sigma(noise.size(), 1.0);
+  slam::widen_by_point_noise(noise, use, c, sigma);
+  CHECK(sigma[0] == 1.0);
+  CHECK(sigma[39] == Approx(std::sqrt(100.0 / 2.0)));
+  // Nine used points with a history are too few to set the reference.
+  use[9] = 0;
+  std::vector<double> unchanged(noise.size(), 1.0);
+  slam::widen_by_point_noise(noise, use, c, unchanged);
+  CHECK(unchanged == std::vector<double>(noise.size(), 1.0));
+}
+
+TEST_CASE("point noise: mismatched inputs and settings out of range throw", "[map][point_noise]") {
+  std::vector<slam::PointNoise> noise(3);
+  std::vector<std::uint8_t> use(3, 1);
+  std::vector<double> sigma(2, 1.0);
+  slam::PointNoiseConfig c;
+  CHECK_THROWS_AS(slam::widen_by_point_noise(noise, use, c, sigma), hbos::InvalidArgument);
+  sigma.resize(3, 1.0);
+  c.tolerance = 0.5;
+  CHECK_THROWS_WITH(slam::widen_by_point_noise(noise, use, c, sigma),
+                    Catch::Contains("tolerance") && Catch::Contains("0.5"));
+  c = {};
+  c.memory = 1.0;
+  CHECK_THROWS_WITH(slam::widen_by_point_noise(noise, use, c, sigma), Catch::Contains("memory"));
+  c = {};
+  c.min_frames = 0;
+  CHECK_THROWS_WITH(slam::widen_by_point_noise(noise, use, c, sigma),
+                    Catch::Contains("min_frames"));
+}
