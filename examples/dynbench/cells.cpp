@@ -138,6 +138,7 @@ nlohmann::json cell_settings(const BenchSettings& settings, const Cell& cell,
     key["relocaliser_refit_check"] = c.map.relocalisation.check_refit;
   // Keyed only when on, so the cells of runs before the option existed stay valid.
   if (c.map.point_noise.enabled) key["point_noise"] = slam::to_json(c.map.point_noise);
+  if (c.map.noise_history.enabled) key["noise_history"] = slam::to_json(c.map.noise_history);
   return key;
 }
 

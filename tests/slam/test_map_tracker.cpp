@@ -443,6 +443,22 @@ TEST_CASE("map tracker with --point-noise: points are weighed by their noise, tr
   CHECK(with.evaluation.ate.stats.rmse != without.evaluation.ate.stats.rmse);
 }
 
+TEST_CASE("map tracker with --noise-history: the screen hears each point's residuals",
+          "[map][tracking][noise_history]") {
+  // What it does on the rendered sequences: docs/results.md, "A point's residual history as
+  // screen evidence".
+  slam::Config config;
+  config.scenario.add_person = true;
+  config.mask.source = slam::MaskSource::kDegraded;
+  const Outcome without = track_bundled(config, 37);
+  config.map.noise_history.enabled = true;
+  const Outcome with = track_bundled(config, 37);
+  CHECK(with.run.lost_frames == 0);
+  CHECK(with.evaluation.ate.stats.rmse < 0.02);
+  // The shares reach the screen's history evidence: its decisions, and so the poses, change.
+  CHECK(with.evaluation.ate.stats.rmse != without.evaluation.ate.stats.rmse);
+}
+
 TEST_CASE("map tracker: a black frame is lost without a pose, then relocalised",
           "[map][relocalisation]") {
   slam::Config config;

@@ -75,6 +75,11 @@ nlohmann::json to_json(const PointNoiseConfig& noise) {
       {"memory", noise.memory}, {"tolerance", noise.tolerance}, {"min_frames", noise.min_frames}};
 }
 
+nlohmann::json to_json(const NoiseHistoryConfig& history) {
+  if (!history.enabled) return false;
+  return {{"memory", history.memory}, {"ratio", history.ratio}, {"min_frames", history.min_frames}};
+}
+
 const char* to_string(RoughPoseMethod method) {
   return method == RoughPoseMethod::kRansac ? "ransac" : "constant-velocity";
 }

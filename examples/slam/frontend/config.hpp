@@ -257,6 +257,8 @@ struct Config {
 /// The map tracker's per-point noise as one object (run summaries and cache keys), or `false`
 /// when off.
 [[nodiscard]] nlohmann::json to_json(const PointNoiseConfig& noise);
+/// The map tracker's residual history as screen evidence, or `false` when off.
+[[nodiscard]] nlohmann::json to_json(const NoiseHistoryConfig& history);
 /// `ransac`, `constant-velocity`.
 [[nodiscard]] const char* to_string(RoughPoseMethod method);
 [[nodiscard]] RoughPoseMethod parse_rough_pose_method(const std::string& name);

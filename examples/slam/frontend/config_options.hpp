@@ -52,6 +52,19 @@ inline void add_front_end_options(CLI::App& app, Config& c) {
                  "with --point-noise: weight of the past per frame in a point's running mean")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 0.99));
+  add_switch(app, "noise-history", c.map.noise_history.enabled,
+             "map tracker: a point whose residual under the refined poses has stayed well above "
+             "the frame's typical one counts, for the default screen's history evidence, as a "
+             "point it rejected before (frontend/map/noise_history.hpp)");
+  app.add_option("--noise-history-ratio", c.map.noise_history.ratio,
+                 "with --noise-history: a point's mean squared residual this many times the "
+                 "frame's median counts as a rejection share of one half")
+      ->capture_default_str()
+      ->check(CLI::Range(1.0, 100.0));
+  app.add_option("--noise-history-memory", c.map.noise_history.memory,
+                 "with --noise-history: weight of the past per frame in a point's running mean")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 0.99));
   add_switch(app, "huber-from-noise", c.refinement.huber_from_noise,
              "scale the pose refinement's Huber width (2.447 px/sigma, ORB-SLAM2's) by the noise "
              "the refined matches have, never wider (docs/slam_demo.md)");

@@ -39,6 +39,7 @@ target_sources(hbos_slam PRIVATE
   ${_hbos_frontend_dir}/map/map.cpp
   ${_hbos_frontend_dir}/map/map_point.cpp
   ${_hbos_frontend_dir}/map/point_noise.cpp
+  ${_hbos_frontend_dir}/map/noise_history.cpp
   ${_hbos_frontend_dir}/map/map_report.cpp
   ${_hbos_frontend_dir}/map/map_run.cpp
   ${_hbos_frontend_dir}/map/map_tracker.cpp

@@ -5,6 +5,7 @@
 /// The stages shared with the frame tracker (ORB, rough pose, screen, refinement) keep their own
 /// groups in frontend/config.hpp.
 
+#include "frontend/map/noise_history.hpp"
 #include "frontend/map/point_noise.hpp"
 
 #include <limits>
@@ -125,6 +126,7 @@ struct MapConfig {
   HistoryConfig history;
   LocalBundleConfig local_bundle;
   PointNoiseConfig point_noise;
+  NoiseHistoryConfig noise_history;
 };
 
 }  // namespace hbos::slam

@@ -38,7 +38,9 @@ struct MapPoint {
   float max_distance_m = 0.f;
   int reference_keyframe = 0;  ///< the keyframe that created it
   ScreeningHistory history;
-  PointNoise noise;     ///< its residuals under the refined poses (point_noise.hpp)
+  PointNoise noise;  ///< its residuals under the refined poses (point_noise.hpp)
+  /// the same over every frame that screened it, kept or rejected (noise_history.hpp)
+  PointNoise screened_noise;
   bool culled = false;  ///< screened out again and again: never matched or used again
   /// Made from a keypoint on the composited person (the label): read by statistics only.
   bool on_person = false;

@@ -1,6 +1,7 @@
 #include "frontend/map/map_tracker.hpp"
 
 #include "frontend/map/local_mapping.hpp"
+#include "frontend/map/noise_history.hpp"
 #include "frontend/mask_distance.hpp"
 
 #include <hbos/screening/residual_field.hpp>
@@ -159,7 +160,8 @@ TrackResult MapTracker::track(const Frame& frame) {
 
   // 8. Screening history: every screened point remembers the verdict; points screened out
   //    again and again are culled.
-  if (config_.map.point_noise.enabled) record_point_noise(m, out.screen, T_camera_world);
+  if (config_.map.point_noise.enabled || config_.map.noise_history.enabled)
+    record_point_noise(m, out.screen, T_camera_world);
   update_history(m, out.screen, point_of);
 
   // 9. Tracked or lost, the keyframe decision, and this frame as the next one's last frame.
@@ -315,6 +317,15 @@ MapTracker::Matched MapTracker::gather(const Frame& frame, const Features& curre
         {{now.x, now.y}, {then.x, then.y}, current.on_person[k] != 0 || p.on_person, false});
   }
   out.stats.matches = static_cast<int>(m.point.size());
+  if (config_.map.noise_history.enabled) {
+    // A point whose residual has stayed large counts as one the screen rejected before.
+    std::vector<PointNoise> noise;
+    noise.reserve(m.point.size());
+    for (const int id : m.point) noise.push_back(map_.point(id).screened_noise);
+    const std::vector<double> shares = noise_shares(noise, config_.map.noise_history);
+    for (std::size_t i = 0; i < shares.size(); ++i)
+      m.evidence.outlier_history[i] = std::max(m.evidence.outlier_history[i], shares[i]);
+  }
   if (evidence_reach_px > 0.0) m.evidence.mask_distance_px = m.mask_distance_px;
   return m;
 }
@@ -346,13 +357,17 @@ std::vector<double> MapTracker::refinement_sigma(const Matched& m,
 
 void MapTracker::record_point_noise(const Matched& m, const ScreenOutcome& screen,
                                     const Eigen::Isometry3d& T_camera_world) {
-  const double memory = config_.map.point_noise.memory;
+  const PointNoiseConfig& survivors = config_.map.point_noise;
+  const NoiseHistoryConfig& screened = config_.map.noise_history;
   for (std::size_t i = 0; i < m.point.size(); ++i) {
-    if (i >= screen.inlier.size() || screen.inlier[i] == 0) continue;
+    const bool kept = i < screen.inlier.size() && screen.inlier[i] != 0;
+    if (!kept && !screened.enabled) continue;
     const Eigen::Vector3d p_c = T_camera_world * m.points_world[i];
     if (!(p_c.z() > 0.0)) continue;
     const Eigen::Vector2d e = (m.observed[i] - refiner_.camera().project(p_c)) / m.sigma[i];
-    map_.point(m.point[i]).noise.record(e.squaredNorm(), memory);
+    MapPoint& p = map_.point(m.point[i]);
+    if (kept && survivors.enabled) p.noise.record(e.squaredNorm(), survivors.memory);
+    if (screened.enabled) p.screened_noise.record(e.squaredNorm(), screened.memory);
   }
 }
 

@@ -96,7 +96,9 @@ class MapTracker {
   /// (PointNoiseConfig) stands out from the frame's refined points.
   [[nodiscard]] std::vector<double> refinement_sigma(const Matched& m,
                                                      const std::vector<std::uint8_t>& use) const;
-  /// Each survivor's squared whitened residual under the final pose, into its point's noise.
+  /// Each match's squared whitened residual under the final pose: a survivor's into its point's
+  /// noise (PointNoiseConfig), every screened match's into its screened noise
+  /// (NoiseHistoryConfig), as each is enabled.
   void record_point_noise(const Matched& m, const ScreenOutcome& screen,
                           const Eigen::Isometry3d& T_camera_world);
   void update_history(const Matched& m, const ScreenOutcome& screen, std::vector<int>& point_of);
