@@ -428,34 +428,23 @@ TEST_CASE("map tracker with --local-ba: every keyframe after the first is adjust
   CHECK(adjusted == inserted);
 }
 
-TEST_CASE("map tracker with --point-noise: points are weighed by their noise, tracking holds",
-          "[map][tracking][point_noise]") {
-  // What it does on the rendered sequences: docs/results.md, "Each map point's own noise".
+TEST_CASE("map tracker with a point's noise record: tracking holds and the option acts",
+          "[map][tracking][point_noise][noise_history]") {
+  // What each does on the rendered sequences: docs/results.md, "Each map point's own noise"
+  // (--point-noise: the final refinement weighs each point by it) and "A point's residual
+  // history as screen evidence" (--noise-history: the default screen's history evidence).
+  const std::string option = GENERATE(as<std::string>{}, "point-noise", "noise-history");
+  INFO("--" << option);
   slam::Config config;
   config.scenario.add_person = true;
   config.mask.source = slam::MaskSource::kDegraded;
   const Outcome without = track_bundled(config, 37);
-  config.map.point_noise.enabled = true;
+  if (option == "point-noise") config.map.point_noise.enabled = true;
+  if (option == "noise-history") config.map.noise_history.enabled = true;
   const Outcome with = track_bundled(config, 37);
   CHECK(with.run.lost_frames == 0);
   CHECK(with.evaluation.ate.stats.rmse < 0.02);
-  // The weights change the poses: the option reaches the refinement.
-  CHECK(with.evaluation.ate.stats.rmse != without.evaluation.ate.stats.rmse);
-}
-
-TEST_CASE("map tracker with --noise-history: the screen hears each point's residuals",
-          "[map][tracking][noise_history]") {
-  // What it does on the rendered sequences: docs/results.md, "A point's residual history as
-  // screen evidence".
-  slam::Config config;
-  config.scenario.add_person = true;
-  config.mask.source = slam::MaskSource::kDegraded;
-  const Outcome without = track_bundled(config, 37);
-  config.map.noise_history.enabled = true;
-  const Outcome with = track_bundled(config, 37);
-  CHECK(with.run.lost_frames == 0);
-  CHECK(with.evaluation.ate.stats.rmse < 0.02);
-  // The shares reach the screen's history evidence: its decisions, and so the poses, change.
+  // The option reaches the pose (the refinement's weights, or the screen's decisions).
   CHECK(with.evaluation.ate.stats.rmse != without.evaluation.ate.stats.rmse);
 }
 

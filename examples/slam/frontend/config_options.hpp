@@ -9,7 +9,18 @@
 
 #include <CLI/CLI.hpp>
 
+#include <string>
+
 namespace hbos::slam {
+
+/// `--<option>-memory`: the weight of the past per frame in the running mean of each point's
+/// squared residual that `--<option>` keeps.
+inline void add_memory_option(CLI::App& app, const std::string& option, double& memory) {
+  app.add_option("--" + option + "-memory", memory,
+                 "with --" + option + ": weight of the past per frame in a point's running mean")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 0.99));
+}
 
 /// Registers the shared front-end options on `app`, bound to `c` (its values are the defaults
 /// the help shows).
@@ -48,10 +59,7 @@ inline void add_front_end_options(CLI::App& app, Config& c) {
                  "median mean squared residual of the frame's refined points")
       ->capture_default_str()
       ->check(CLI::Range(1.0, 100.0));
-  app.add_option("--point-noise-memory", c.map.point_noise.memory,
-                 "with --point-noise: weight of the past per frame in a point's running mean")
-      ->capture_default_str()
-      ->check(CLI::Range(0.0, 0.99));
+  add_memory_option(app, "point-noise", c.map.point_noise.memory);
   add_switch(app, "noise-history", c.map.noise_history.enabled,
              "map tracker: a point whose residual under the refined poses has stayed well above "
              "the frame's typical one counts, for the default screen's history evidence, as a "
@@ -61,10 +69,7 @@ inline void add_front_end_options(CLI::App& app, Config& c) {
                  "frame's median counts as a rejection share of one half")
       ->capture_default_str()
       ->check(CLI::Range(1.0, 100.0));
-  app.add_option("--noise-history-memory", c.map.noise_history.memory,
-                 "with --noise-history: weight of the past per frame in a point's running mean")
-      ->capture_default_str()
-      ->check(CLI::Range(0.0, 0.99));
+  add_memory_option(app, "noise-history", c.map.noise_history.memory);
   add_switch(app, "huber-from-noise", c.refinement.huber_from_noise,
              "scale the pose refinement's Huber width (2.447 px/sigma, ORB-SLAM2's) by the noise "
              "the refined matches have, never wider (docs/slam_demo.md)");
