@@ -2,9 +2,7 @@
 
 #include <hbos/error.hpp>
 
-#include <algorithm>
 #include <cmath>
-#include <cstddef>
 
 namespace hbos::slam {
 
@@ -17,16 +15,8 @@ std::vector<double> noise_shares(const std::vector<PointNoise>& noise,
   hbos::detail::require(config.memory >= 0.0 && config.memory < 1.0,
                         "NoiseHistoryConfig memory must be in [0, 1), got ", config.memory);
   std::vector<double> shares(noise.size(), 0.0);
-  std::vector<double> known;
-  for (const PointNoise& n : noise)
-    if (n.frames() >= config.min_frames) known.push_back(n.mean_square());
-  // Too few points with a record to say what this frame's typical residual is.
-  constexpr std::size_t kMinKnown = 10;
-  if (known.size() < kMinKnown) return shares;
-  const auto mid = known.begin() + static_cast<std::ptrdiff_t>(known.size() / 2);
-  std::nth_element(known.begin(), mid, known.end());
-  const double reference = config.ratio * *mid;
-  if (!(reference > 0.0)) return shares;
+  const double reference = config.ratio * median_mean_square(noise, config.min_frames);
+  if (!(reference > 0.0)) return shares;  // too few points with a record, or a median of 0
   for (std::size_t i = 0; i < noise.size(); ++i) {
     if (noise[i].frames() < config.min_frames) continue;
     const double q = noise[i].mean_square();

@@ -8,6 +8,19 @@
 
 namespace hbos::slam {
 
+double median_mean_square(const std::vector<PointNoise>& noise, int min_frames,
+                          const std::vector<std::uint8_t>* use) {
+  std::vector<double> known;
+  for (std::size_t i = 0; i < noise.size(); ++i)
+    if ((use == nullptr || (*use)[i] != 0) && noise[i].frames() >= min_frames)
+      known.push_back(noise[i].mean_square());
+  constexpr std::size_t kMinKnown = 10;
+  if (known.size() < kMinKnown) return 0.0;
+  const auto mid = known.begin() + static_cast<std::ptrdiff_t>(known.size() / 2);
+  std::nth_element(known.begin(), mid, known.end());
+  return *mid;
+}
+
 void widen_by_point_noise(const std::vector<PointNoise>& noise,
                           const std::vector<std::uint8_t>& use, const PointNoiseConfig& config,
                           std::vector<double>& sigma) {
@@ -21,17 +34,8 @@ void widen_by_point_noise(const std::vector<PointNoise>& noise,
                         config.min_frames);
   hbos::detail::require(config.memory >= 0.0 && config.memory < 1.0,
                         "PointNoiseConfig memory must be in [0, 1), got ", config.memory);
-  std::vector<double> known;  // the used points' own noise, where they have shown it
-  for (std::size_t i = 0; i < noise.size(); ++i)
-    if (use[i] != 0 && noise[i].frames() >= config.min_frames)
-      known.push_back(noise[i].mean_square());
-  // Too few points with a history to say what this frame's noise is: every point as it comes.
-  constexpr std::size_t kMinKnown = 10;
-  if (known.size() < kMinKnown) return;
-  const auto mid = known.begin() + static_cast<std::ptrdiff_t>(known.size() / 2);
-  std::nth_element(known.begin(), mid, known.end());
-  const double reference = config.tolerance * *mid;
-  if (!(reference > 0.0)) return;
+  const double reference = config.tolerance * median_mean_square(noise, config.min_frames, &use);
+  if (!(reference > 0.0)) return;  // too few used points with a record, or a median of 0
   for (std::size_t i = 0; i < noise.size(); ++i) {
     const double q = noise[i].mean_square();
     if (noise[i].frames() >= config.min_frames && q > reference)

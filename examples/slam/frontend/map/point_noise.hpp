@@ -48,6 +48,12 @@ class PointNoise {
   int frames_ = 0;
 };
 
+/// The frame's typical running mean: the median of `mean_square()` over the points with at least
+/// `min_frames` records (and `use[i]` set, when `use` is given), or 0 when fewer than 10 points
+/// qualify: too few to say what the frame's noise is.
+[[nodiscard]] double median_mean_square(const std::vector<PointNoise>& noise, int min_frames,
+                                        const std::vector<std::uint8_t>* use = nullptr);
+
 /// Widens `sigma[i]` by sqrt(q_i / (tolerance median)) where point i's running mean q_i =
 /// `noise[i].mean_square()` exceeds `tolerance` times the median q over the matches with
 /// `use[i]` set (only points with at least `min_frames` records count, on either side). Fewer
