@@ -7,7 +7,8 @@
 //
 //   g++ -std=c++17 -O2 -g -DNDEBUG -I<headers>/include -I<repo> -I/usr/include/eigen3 \
 //       centred_magnitudes_instructions.cpp -o instr
-//   valgrind --tool=callgrind --toggle-collect='hbos::ReprojectionScreen<double>::run_gated*' ./instr
+//   valgrind --tool=callgrind \
+//     --toggle-collect='hbos::ReprojectionScreen<double>::run_gated*' ./instr
 //
 // Built against the headers of d693f92 (before) and of d693f92 with
 // centred_magnitudes_columns.patch applied (after); results in centred_magnitudes_instructions.txt.
