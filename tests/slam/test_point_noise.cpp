@@ -28,6 +28,25 @@ slam::PointNoise noise_of(double mean_square, int frames) {
   return n;
 }
 
+/// A frame of n points with random mean squares q (a gamma draw), recorded twice: as drawn and
+/// k times larger (the same frame, noisier). The properties below must not see the difference.
+struct ScaledFrames {
+  std::vector<double> q;
+  std::vector<slam::PointNoise> base, scaled;
+};
+
+ScaledFrames random_scaled_frames(std::mt19937& rng, std::size_t n, double k) {
+  std::gamma_distribution<double> spread(1.5, 1.0);
+  ScaledFrames f;
+  f.q.resize(n);
+  for (double& v : f.q) v = spread(rng);
+  for (const double v : f.q) {
+    f.base.push_back(noise_of(v, 2));
+    f.scaled.push_back(noise_of(k * v, 2));
+  }
+  return f;
+}
+
 }  // namespace
 
 TEST_CASE("point noise: the first record is the mean, then the past fades by `memory`",
@@ -72,23 +91,15 @@ TEST_CASE("point noise: the widening is the same whatever the frame's noise leve
   // A noisier frame (every mean square k times larger) must not down-weight every point: the
   // reference is the frame's own median.
   std::mt19937 rng(7);
-  std::gamma_distribution<double> spread(1.5, 1.0);
   slam::PointNoiseConfig c;
   for (int trial = 0; trial < 20; ++trial) {
     const std::size_t n = 10 + static_cast<std::size_t>(trial) * 17;
-    std::vector<double> q(n);
-    for (double& v : q) v = spread(rng);
+    const ScaledFrames f = random_scaled_frames(rng, n, 0.25 * (trial + 1));
     std::vector<std::uint8_t> use(n);
     for (std::size_t i = 0; i < n; ++i) use[i] = i % 5 != 0 ? 1 : 0;
-    const double k = 0.25 * (trial + 1);
-    std::vector<slam::PointNoise> base, scaled;
-    for (const double v : q) {
-      base.push_back(noise_of(v, 2));
-      scaled.push_back(noise_of(k * v, 2));
-    }
     std::vector<double> sigma_base(n, 1.0), sigma_scaled(n, 1.0);
-    slam::widen_by_point_noise(base, use, c, sigma_base);
-    slam::widen_by_point_noise(scaled, use, c, sigma_scaled);
+    slam::widen_by_point_noise(f.base, use, c, sigma_base);
+    slam::widen_by_point_noise(f.scaled, use, c, sigma_scaled);
     int widened = 0;
     for (std::size_t i = 0; i < n; ++i) {
       CHECK(sigma_scaled[i] == Approx(sigma_base[i]).epsilon(1e-12));
@@ -164,20 +175,13 @@ TEST_CASE("noise history: a point at ratio x the frame's median gets one half",
 TEST_CASE("noise history: shares lie between 0 and 1 and grow with q whatever the frame's scale",
           "[map][noise_history]") {
   std::mt19937 rng(11);
-  std::gamma_distribution<double> spread(1.5, 1.0);
   slam::NoiseHistoryConfig c;
   for (int trial = 0; trial < 20; ++trial) {
     const std::size_t n = 10 + static_cast<std::size_t>(trial) * 13;
-    std::vector<double> q(n);
-    for (double& v : q) v = spread(rng);
-    const double k = 0.3 * (trial + 1);
-    std::vector<slam::PointNoise> base, scaled;
-    for (const double v : q) {
-      base.push_back(noise_of(v, 2));
-      scaled.push_back(noise_of(k * v, 2));
-    }
-    const std::vector<double> a = slam::noise_shares(base, c);
-    const std::vector<double> b = slam::noise_shares(scaled, c);
+    const ScaledFrames f = random_scaled_frames(rng, n, 0.3 * (trial + 1));
+    const std::vector<double>& q = f.q;
+    const std::vector<double> a = slam::noise_shares(f.base, c);
+    const std::vector<double> b = slam::noise_shares(f.scaled, c);
     for (std::size_t i = 0; i < n; ++i) {
       CHECK(a[i] >= 0.0);
       CHECK(a[i] <= 1.0);
