@@ -51,6 +51,10 @@ std::string non_default_settings(const slam::Config& c) {
                  ? fmt::format(", the noise gate's floor {:g} after the first round", later_floor)
                  : std::string(", chi^2's gate floor in every round");
   }
+  tracker_default.screen.later_rounds_rigid_field.reset();
+  const bool rigid = slam::later_rounds_rigid_field(c);
+  if (rigid != slam::later_rounds_rigid_field(tracker_default))
+    named += rigid ? ", a rigid field after the first round" : ", an affine field in every round";
   if (c.tracker == slam::TrackerKind::kMap && c.map.local_bundle.enabled)
     named += ", local bundle adjustment";
   return named;
@@ -192,6 +196,7 @@ nlohmann::json table_json(const std::vector<TableRow>& rows,
                    {"local_bundle_adjustment", settings.base.map.local_bundle.enabled},
                    {"provisional_consensus", settings.base.screen.provisional_consensus},
                    {"later_rounds_gate_floor", slam::later_rounds_gate_floor(settings.base)},
+                   {"later_rounds_rigid_field", slam::later_rounds_rigid_field(settings.base)},
                    {"rough_pose", slam::to_string(settings.base.rough_pose.method)},
                    {"ransac_threshold_px", settings.base.rough_pose.ransac_threshold_px},
                    {"spread", "sample standard deviation over seeds (n - 1)"},

@@ -1,7 +1,8 @@
 #pragma once
 /// \file
 /// Reprojection-residual screening in one include: a frame's matches (screening/matches.hpp),
-/// the dominant residual field (screening/residual_field.hpp), the strategies
+/// the dominant residual field and its rigid refit (screening/residual_field.hpp,
+/// screening/rigid_field.hpp), the strategies
 /// (screening/strategies.hpp), the screen (screening/screen.hpp), the pinhole model and the
 /// Gauss-Newton pose refit (screening/pinhole.hpp, screening/pose_refinement.hpp), the leverage of
 /// a group of matches on the pose (screening/pose_leverage.hpp), and the conveniences for callers
@@ -18,5 +19,6 @@
 #include "hbos/screening/pose_refinement.hpp"
 #include "hbos/screening/projection.hpp"
 #include "hbos/screening/residual_field.hpp"
+#include "hbos/screening/rigid_field.hpp"
 #include "hbos/screening/screen.hpp"
 #include "hbos/screening/strategies.hpp"

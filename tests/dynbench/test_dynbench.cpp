@@ -108,6 +108,12 @@ TEST_CASE("dynbench cells: the opt-in front-end settings are part of a cell's ke
   const auto lower_floor = hbos::dynbench::cell_settings(s, cell, "fingerprint");
   CHECK(lower_floor.at("later_rounds_gate_floor") == 1.5);
   CHECK(lower_floor != without_consensus);
+  // So does the later rounds' field model.
+  CHECK(plain.at("later_rounds_rigid_field") == hbos::slam::later_rounds_rigid_field(s.base));
+  s.base.screen.later_rounds_rigid_field = !hbos::slam::later_rounds_rigid_field(s.base);
+  const auto other_field = hbos::dynbench::cell_settings(s, cell, "fingerprint");
+  CHECK(other_field.at("later_rounds_rigid_field") == *s.base.screen.later_rounds_rigid_field);
+  CHECK(other_field != lower_floor);
 }
 
 TEST_CASE("dynbench cells: the relocaliser's refit check keys the map tracker's cells alone",
@@ -301,6 +307,9 @@ TEST_CASE("dynbench --help names the front end's on/off settings and their defau
   const std::size_t later = help.find("--later-rounds-floor");
   REQUIRE(later != std::string::npos);
   CHECK(help.find("the tracker's own", later) < help.find("--rounds", later));
+  const std::size_t field = help.find("--later-rounds-field");
+  REQUIRE(field != std::string::npos);
+  CHECK(help.find("frame rigid, map affine", field) != std::string::npos);
 }
 
 TEST_CASE("dynbench end to end on a short rendered scenario", "[dynbench][render]") {

@@ -184,6 +184,57 @@ TEST_CASE("the screening stage's later rounds gate at their own floor, the first
   CHECK(chi2_with(2.0) == chi2_with(0.0));
 }
 
+TEST_CASE("the screening stage refits a rigid field in the later rounds: the frame tracker's own",
+          "[screen_stage]") {
+  slam::Config map_config, frame_config;
+  map_config.tracker = slam::TrackerKind::kMap;
+  CHECK(slam::later_rounds_rigid_field(frame_config));
+  CHECK_FALSE(slam::later_rounds_rigid_field(map_config));
+  CHECK(slam::screen_stage_for(frame_config).later_rounds_rigid_field == true);
+  CHECK(slam::screen_stage_for(map_config).later_rounds_rigid_field == false);
+  map_config.screen.later_rounds_rigid_field = true;  // set: the same for either tracker
+  frame_config.screen.later_rounds_rigid_field = false;
+  CHECK(slam::later_rounds_rigid_field(map_config));
+  CHECK_FALSE(slam::later_rounds_rigid_field(frame_config));
+  CHECK_FALSE(slam::ScreenStageConfig{}.later_rounds_rigid_field.has_value());
+
+  std::size_t tail = 0;
+  const Frame f = room_with_a_tail(tail);
+  const auto stage_config = [](int rounds, bool rigid) {
+    slam::ScreenStageConfig config;
+    config.rounds = rounds;
+    config.later_rounds_gate_floor = 2.0;
+    config.later_rounds_rigid_field = rigid;
+    return config;
+  };
+  const slam::PoseRefiner refiner(slam::RefinementConfig{}, kCamera);
+  const auto screen_with = [&](int rounds, bool rigid) {
+    slam::ResidualScreen stage(stage_config(rounds, rigid));
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    return stage.screen(f.points, f.observed, f.sigma, T, refiner, f.evidence);
+  };
+  // The first round is the same screen either way.
+  CHECK(screen_with(1, true).magnitude == screen_with(1, false).magnitude);
+  // After it, the room stays and the tail goes, as with the affine refit.
+  const slam::ScreenOutcome rigid = screen_with(4, true);
+  CHECK(rigid.rounds == 4);
+  CHECK(kept_share(rigid, tail, f.points.size()) == 0.0);
+  CHECK(kept_share(rigid, 0, tail) > 0.99);
+  // The intrinsics are the refiner's of each call: a stage that screened with another camera
+  // gives a fresh stage's bits.
+  hbos::PinholeCamerad other = kCamera;
+  other.fx *= 1.05;
+  const slam::PoseRefiner other_refiner(slam::RefinementConfig{}, other);
+  slam::ResidualScreen used(stage_config(4, true)), fresh(stage_config(4, true));
+  Eigen::Isometry3d T1 = Eigen::Isometry3d::Identity(), T2 = T1;
+  (void)used.screen(f.points, f.observed, f.sigma, T1, other_refiner, f.evidence);
+  T1 = Eigen::Isometry3d::Identity();
+  const slam::ScreenOutcome again = used.screen(f.points, f.observed, f.sigma, T1, refiner);
+  const slam::ScreenOutcome first = fresh.screen(f.points, f.observed, f.sigma, T2, refiner);
+  CHECK(again.magnitude == first.magnitude);
+  CHECK(T1.matrix() == T2.matrix());
+}
+
 TEST_CASE("the screening stage refuses a later rounds' floor that is negative or not finite",
           "[screen_stage]") {
   for (const double bad : {-0.5, std::numeric_limits<double>::infinity()}) {

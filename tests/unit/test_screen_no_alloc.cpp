@@ -39,6 +39,7 @@ TEST_CASE("screening allocates nothing after warm-up", "[reprojection][alloc]") 
   const hbos::PinholeCamerad camera;
   hbos::IteratedScreenOptions later_floor;
   later_floor.later_gate_floor = 2.0;
+  later_floor.later_rigid_field = true;  // and a rigid refit: six sums and a 6 x 6 solve
 
   for (const auto& strategy : strategies) {
     INFO("strategy " << hbos::strategy_name(strategy));
@@ -51,6 +52,9 @@ TEST_CASE("screening allocates nothing after warm-up", "[reprojection][alloc]") 
     screen.screen(matches);
     Eigen::Isometry3d T = scenes[0].T_cur_world_rough;
     hbos::screen_and_refine_pose(screen, scenes[0].points_world, camera, T, matches);
+    hbos_test::load_matches(scenes[0], matches);
+    T = scenes[0].T_cur_world_rough;
+    hbos::screen_and_refine_pose(screen, scenes[0].points_world, camera, T, matches, later_floor);
 
     hbos_test::AllocationCounter counter;
     Eigen::Index kept = 0;
@@ -60,8 +64,8 @@ TEST_CASE("screening allocates nothing after warm-up", "[reprojection][alloc]") 
       Eigen::Isometry3d T_cur_world = scene.T_cur_world_rough;
       kept += hbos::screen_and_refine_pose(screen, scene.points_world, camera, T_cur_world, matches)
                   .n_inliers();
-      // The rounds with a lower gate floor after the first switch the screen's config back and
-      // forth: that copies a config, nothing more.
+      // The rounds with a lower gate floor and a rigid refit after the first switch the screen's
+      // config back and forth: that copies a config, nothing more.
       hbos_test::load_matches(scene, matches);
       T_cur_world = scene.T_cur_world_rough;
       kept += hbos::screen_and_refine_pose(screen, scene.points_world, camera, T_cur_world, matches,

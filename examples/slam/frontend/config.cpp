@@ -13,9 +13,15 @@ double later_rounds_gate_floor(const Config& config) {
   return gate.scales * gate.min_scale;
 }
 
+bool later_rounds_rigid_field(const Config& config) {
+  if (config.screen.later_rounds_rigid_field) return *config.screen.later_rounds_rigid_field;
+  return config.tracker == TrackerKind::kFrame;
+}
+
 ScreenStageConfig screen_stage_for(const Config& config) {
   ScreenStageConfig stage = config.screen;
   stage.later_rounds_gate_floor = later_rounds_gate_floor(config);
+  stage.later_rounds_rigid_field = later_rounds_rigid_field(config);
   return stage;
 }
 

@@ -157,6 +157,13 @@ struct ScreenStageConfig {
   /// the noise the frame has (3 noise scales) down to this floor. Only strategies with a noise
   /// gate use it.
   std::optional<double> later_rounds_gate_floor;
+  /// The default screen refits its residual field as the pixel shift of a small rigid motion
+  /// (hbos::RefitModel::Rigid, with the tracker's camera and the points' depths) in the rounds
+  /// after the first, instead of an affine field; unset = the tracker's own
+  /// (later_rounds_rigid_field(const Config&)). After a refinement on the survivors, an affine
+  /// field on real frames fits structure no pose error gives, and centring it away keeps the
+  /// matches the rigid refinement cannot agree with.
+  std::optional<bool> later_rounds_rigid_field;
 
   /// Selects a strategy of hbos::named_strategies() by name, or "none".
   /// \throws hbos::InvalidArgument naming the value and the choices.
@@ -243,7 +250,13 @@ struct Config {
 /// of the view (docs/results.md, "The noise gate after the first refinement", has the
 /// measurements).
 [[nodiscard]] double later_rounds_gate_floor(const Config& config);
-/// config.screen with later_rounds_gate_floor set to the value above: what a tracker screens with.
+/// Whether the default screen refits a rigid field in the rounds after the first: the setting
+/// (ScreenStageConfig::later_rounds_rigid_field), or the tracker's own. The frame tracker's is
+/// on; the map tracker's is off (measured in docs/results.md, "A field only a camera motion can
+/// give").
+[[nodiscard]] bool later_rounds_rigid_field(const Config& config);
+/// config.screen with later_rounds_gate_floor and later_rounds_rigid_field set to the values
+/// above: what a tracker screens with.
 [[nodiscard]] ScreenStageConfig screen_stage_for(const Config& config);
 
 /// `none`, `exact`, `degraded`, `detector`.

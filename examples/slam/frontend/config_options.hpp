@@ -79,6 +79,13 @@ inline void add_front_end_options(CLI::App& app, Config& c) {
          "refinement; 0 = the first round's (chi^2's 2.447) in every round (default: the "
          "tracker's own: frame 1.22 = 3 x the least noise scale, map 0; docs/results.md)")
       ->check(CLI::Range(0.0, 100.0));
+  app.add_option_function<std::string>(
+         "--later-rounds-field",
+         [&c](const std::string& model) { c.screen.later_rounds_rigid_field = model == "rigid"; },
+         "the field the default screen refits on the matches that look static in the rounds "
+         "after the first refinement: rigid (the pixel shift of a small camera motion) or affine "
+         "(default: the tracker's own: frame rigid, map affine; docs/results.md)")
+      ->check(CLI::IsMember({"rigid", "affine"}));
   app.add_option("--prediction-limit-m", c.jump_limit.max_from_prediction_m,
                  "both trackers: the farthest [m] a RANSAC rough pose may put the camera from the "
                  "constant-velocity prediction; beyond it the prediction is the rough pose")

@@ -29,6 +29,10 @@ double value_or_nan(const std::vector<double>& column, std::size_t i) {
   return i < column.size() ? column[i] : std::numeric_limits<double>::quiet_NaN();
 }
 
+bool same_intrinsics(const std::optional<hbos::PinholeCamerad>& a, const hbos::PinholeCamerad& b) {
+  return a && a->fx == b.fx && a->fy == b.fy && a->cx == b.cx && a->cy == b.cy;
+}
+
 }  // namespace
 
 void keep_out_provisional(const std::vector<std::uint8_t>& provisional, int min_survivors,
@@ -60,6 +64,9 @@ struct ResidualScreen::Impl {
   std::vector<std::uint8_t> use;                    // refinement mask, caller's indices
   hbos::ScreenConfig first;                         // the config of the first round
   std::optional<hbos::ScreenConfig> later;          // of the later ones, where they differ
+  // The intrinsics `later` refits its rigid field with (ScreenStageConfig::
+  // later_rounds_rigid_field): the refiner's camera, known from the first frame on.
+  std::optional<hbos::PinholeCamerad> rigid_camera;
 };
 
 ResidualScreen::ResidualScreen(const ScreenStageConfig& config)
@@ -97,6 +104,12 @@ ScreenOutcome ResidualScreen::screen(const std::vector<Eigen::Vector3d>& points_
                                      const MatchEvidence& evidence) {
   const std::size_t n = points_prev.size();
   const hbos::PinholeCamerad& camera = refiner.camera();
+  if (impl_->screen && config_.later_rounds_rigid_field.value_or(false) &&
+      !same_intrinsics(impl_->rigid_camera, camera)) {
+    impl_->later = hbos::later_rounds_config(
+        impl_->first, hbos::LaterRounds{config_.later_rounds_gate_floor.value_or(0.0), camera});
+    impl_->rigid_camera = camera;
+  }
   ScreenOutcome out;
   out.inlier.assign(n, 0);
   out.magnitude.assign(n, std::numeric_limits<double>::quiet_NaN());

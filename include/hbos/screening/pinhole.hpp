@@ -38,6 +38,27 @@ struct PinholeCamera {
                                                          Scalar z) const {
     return {(uv.x() - cx) * z / fx, (uv.y() - cy) * z / fy, z};
   }
+
+  /// The rows d(u, v) / d(motion) of the pixel `uv` of a point with inverse depth
+  /// `inverse_depth` [1/m] (0: a point at infinity) under a small rigid motion of the scene in
+  /// this camera's frame, motion = (t [m], w [rad]): the point P moves to P + t + w x P. To first
+  /// order the pixel moves by `ju . motion` along u and `jv . motion` along v.
+  void motion_jacobian(const Eigen::Matrix<Scalar, 2, 1>& uv, Scalar inverse_depth,
+                       Eigen::Matrix<Scalar, 6, 1>& ju, Eigen::Matrix<Scalar, 6, 1>& jv) const {
+    const Scalar x = (uv.x() - cx) / fx, y = (uv.y() - cy) / fy, q = inverse_depth;
+    ju << fx * q, Scalar(0), -fx * x * q, -fx * x * y, fx * (Scalar(1) + x * x), -fx * y;
+    jv << Scalar(0), fy * q, -fy * y * q, -fy * (Scalar(1) + y * y), fy * x * y, fy * x;
+  }
+
+  /// The first-order pixel shift of `uv` (inverse depth `inverse_depth`) under `motion`
+  /// (motion_jacobian).
+  [[nodiscard]] Eigen::Matrix<Scalar, 2, 1> pixel_motion(
+      const Eigen::Matrix<Scalar, 2, 1>& uv, Scalar inverse_depth,
+      const Eigen::Matrix<Scalar, 6, 1>& motion) const {
+    Eigen::Matrix<Scalar, 6, 1> ju, jv;
+    motion_jacobian(uv, inverse_depth, ju, jv);
+    return {ju.dot(motion), jv.dot(motion)};
+  }
 };
 
 using PinholeCamerad = PinholeCamera<double>;

@@ -89,6 +89,12 @@ struct IteratedScreenOptions {
   /// noise scales with no floor of their own; its map tracker keeps one floor (docs/results.md,
   /// "The noise gate after the first refinement"). >= 0.
   double later_gate_floor = 0.0;
+  /// In the rounds after the first, the default screen refits its field as the pixel shift of a
+  /// small rigid motion (RefitModel::Rigid, with `camera` and the points' depths) instead of an
+  /// affine field: after a refinement, an affine field also fits structure no pose error gives,
+  /// and centring that away keeps the matches the refinement cannot agree with. The SLAM
+  /// example's frame tracker does (docs/results.md, "A field only a camera motion can give").
+  bool later_rigid_field = false;
 };
 
 /// The rounds of ORB-SLAM2's PoseOptimization, written out for callers that hold 3-D points:
@@ -115,7 +121,16 @@ const ScreenResult<Scalar>& screen_and_refine_pose(
   // The later rounds' config, where it differs; the caller's config is back in place on return,
   // a throw included.
   const ScreenConfig first = screen.config();
-  const std::optional<ScreenConfig> later = later_rounds_config(first, options.later_gate_floor);
+  LaterRounds later_rounds{options.later_gate_floor, std::nullopt};
+  if (options.later_rigid_field) {
+    PinholeCamera<double> intrinsics;
+    intrinsics.fx = static_cast<double>(camera.fx);
+    intrinsics.fy = static_cast<double>(camera.fy);
+    intrinsics.cx = static_cast<double>(camera.cx);
+    intrinsics.cy = static_cast<double>(camera.cy);
+    later_rounds.rigid_field = intrinsics;
+  }
+  const std::optional<ScreenConfig> later = later_rounds_config(first, later_rounds);
   const bool switch_config = later.has_value();
   // (The caller's config was validated when it was set, so putting it back cannot throw.)
   const auto restore = [&] {

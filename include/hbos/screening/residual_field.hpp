@@ -10,7 +10,8 @@
 /// pose's error gives every static match — constant (the mode of the residual vectors: a weighted
 /// mean shift started at the coordinate-wise median) or affine in the predicted pixel p (it also
 /// absorbs the roll and zoom of the pose error). Subtracting it is what lets a screen run *before*
-/// pose optimisation.
+/// pose optimisation. A rigid field (rigid_field.hpp) is the pixel shift of a small camera motion
+/// itself: it needs the depths and the intrinsics, and it cannot absorb what no pose error gives.
 
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
@@ -23,6 +24,7 @@
 
 #include "hbos/error.hpp"
 #include "hbos/screening/matches.hpp"
+#include "hbos/screening/pinhole.hpp"
 #include "hbos/screening/pixel_grid.hpp"
 
 namespace hbos {
@@ -34,17 +36,33 @@ enum class ResidualCenter {
   Affine     ///< c(p) = c + G (p - p0): also absorbs the roll and zoom a rough pose leaves
 };
 
-/// The dominant residual as a function of the predicted pixel p: c(p) = offset + gradient (p -
-/// origin).
+/// The dominant residual as a function of the predicted pixel p and the inverse depth q of the
+/// predicted point: c(p, q) = offset + gradient (p - origin) + J(p, q) motion, where J is the
+/// camera's motion_jacobian. The last term is the pixel shift a small rigid motion gives (a
+/// rigid field, FieldFit::refit_model); it is zero unless `rigid`.
 template <class Scalar>
 struct ResidualField {
   Eigen::Matrix<Scalar, 2, 1> offset = Eigen::Matrix<Scalar, 2, 1>::Zero();    ///< [px]
   Eigen::Matrix<Scalar, 2, 2> gradient = Eigen::Matrix<Scalar, 2, 2>::Zero();  ///< [px/px]
   Eigen::Matrix<Scalar, 2, 1> origin = Eigen::Matrix<Scalar, 2, 1>::Zero();    ///< [px]
-  [[nodiscard]] Eigen::Matrix<Scalar, 2, 1> at(const Eigen::Matrix<Scalar, 2, 1>& p) const {
-    return offset + gradient * (p - origin);
+  /// A small rigid motion of the scene in the camera frame (t [m], w [rad]); read when `rigid`.
+  Eigen::Matrix<Scalar, 6, 1> motion = Eigen::Matrix<Scalar, 6, 1>::Zero();
+  PinholeCamera<Scalar> camera{};  ///< the intrinsics `motion` projects with
+  bool rigid = false;
+  /// c(p, q); q = 0 for a point of unknown depth (it moves as a point at infinity would).
+  [[nodiscard]] Eigen::Matrix<Scalar, 2, 1> at(const Eigen::Matrix<Scalar, 2, 1>& p,
+                                               Scalar inverse_depth = Scalar(0)) const {
+    Eigen::Matrix<Scalar, 2, 1> c = offset + gradient * (p - origin);
+    if (rigid) c += camera.pixel_motion(p, inverse_depth, motion);
+    return c;
   }
 };
+
+/// The inverse depth a field is evaluated with: 1 / depth, or 0 where the depth is not known.
+template <class Scalar>
+[[nodiscard]] Scalar inverse_depth_of(Scalar depth_m) {
+  return std::isfinite(depth_m) && depth_m > Scalar(0) ? Scalar(1) / depth_m : Scalar(0);
+}
 
 /// How the residual features are formed (see the file comment).
 struct ResidualOptions {

@@ -49,6 +49,7 @@
 #include "hbos/screening/neighbourhood.hpp"
 #include "hbos/screening/noise_scale.hpp"
 #include "hbos/screening/residual_field.hpp"
+#include "hbos/screening/rigid_field.hpp"
 #include "hbos/screening/strategies.hpp"
 #include "hbos/threshold.hpp"
 
@@ -287,7 +288,7 @@ class ReprojectionScreen {
   Histogram<Scalar> magnitude_hist_, angle_hist_, evidence_hist_;
   std::vector<Scalar> angle_, fit_values_, scratch_;
   std::vector<Scalar> dx_, dy_, depth_, coherence_, proximity_, history_;
-  std::vector<std::uint8_t> angle_used_, fired_, looks_static_;
+  std::vector<std::uint8_t> angle_used_, fired_, looks_static_, rigid_inside_;
   std::vector<std::uint32_t> cell_counts_, cell_of_, flagged_index_;
   std::vector<Scalar> cell_factor_;
   detail::FieldSamples<Scalar> samples_;
@@ -366,7 +367,10 @@ Scalar ReprojectionScreen<Scalar>::field_support(const Matches<Scalar>& matches,
   std::size_t k = 0;
   for (Index i = 0; i < matches.size(); ++i) {
     if (!in_fit(matches, i)) continue;
-    const Eigen::Matrix<Scalar, 2, 1> d = matches.residual(i) - field.at(matches.predicted(i));
+    const Eigen::Matrix<Scalar, 2, 1> d =
+        matches.residual(i) -
+        field.at(matches.predicted(i),
+                 field.rigid ? inverse_depth_of(matches.depth(i)) : Scalar(0));
     const Scalar s2 = matches.sigma(i) * matches.sigma(i);
     // Outside the window it adds +0, which leaves the sum as it is: no branch.
     support += d.squaredNorm() <= w2 * s2 ? samples_.w[k] * s2 : Scalar(0);
@@ -385,7 +389,9 @@ void ReprojectionScreen<Scalar>::centred_magnitudes(const Matches<Scalar>& match
   dy_.resize(static_cast<std::size_t>(n));
   for (Index i = 0; i < n; ++i) {
     const auto k = static_cast<std::size_t>(i);
-    const Eigen::Matrix<Scalar, 2, 1> c = r.field_.at(matches.predicted(i));
+    const Eigen::Matrix<Scalar, 2, 1> c =
+        r.field_.rigid ? r.field_.at(matches.predicted(i), inverse_depth_of(matches.depth(i)))
+                       : r.field_.at(matches.predicted(i));
     Eigen::Matrix<Scalar, 2, 1> d = matches.residual(i) - c;
     // A stereo component shifts with the pose error like u does: center it by c_x.
     const Scalar right = matches.has_right(i) ? matches.right_residual(i) - c.x() : Scalar(0);
@@ -642,9 +648,16 @@ void ReprojectionScreen<Scalar>::run_gated(const Matches<Scalar>& matches, const
       // Whitened pixels, like center_window; never wider than it.
       const double window = std::min(s.residuals.center_window,
                                      s.field.refit_window_scales * static_cast<double>(scale_));
-      fit_field(
-          matches, s, [&](Index i) { return looks_static_[static_cast<std::size_t>(i)] != 0; },
-          std::max(window, 1e-3), s.residuals.center);
+      const auto looks_static = [&](Index i) {
+        return looks_static_[static_cast<std::size_t>(i)] != 0;
+      };
+      fit_field(matches, s, looks_static, std::max(window, 1e-3), s.residuals.center);
+      // The rigid field starts from the affine one's support, weighted by 1/sigma^2 alone: the
+      // matches that look static are spread over the image already.
+      if (s.field.refit_model == RefitModel::Rigid)
+        result_.field_ = detail::fit_rigid_field(matches, looks_static, result_.field_,
+                                                 s.field.camera, std::max(window, 1e-3),
+                                                 s.residuals.center_iterations, rigid_inside_);
       centred_magnitudes(matches, s);
       gate_and_evidence(matches, s);
     }

@@ -47,6 +47,7 @@
 #include "hbos/binning.hpp"
 #include "hbos/error.hpp"
 #include "hbos/histogram.hpp"
+#include "hbos/screening/pinhole.hpp"
 #include "hbos/screening/residual_field.hpp"
 #include "hbos/threshold.hpp"
 
@@ -132,6 +133,12 @@ struct HistoryEvidence {
 };
 
 /// How the dominant residual field resists a dynamic object that holds many matches.
+/// The model of the field refitted on the matches that look static (FieldFit::refit_model).
+enum class RefitModel {
+  Center,  ///< the screen's ResidualOptions::center model (affine by default)
+  Rigid    ///< the pixel shift of a small rigid motion (rigid_field.hpp)
+};
+
 struct FieldFit {
   /// [px] each coarse image cell of this side weighs at most as much as the average occupied
   /// cell: a person crowding a few cells cannot outvote the background spread over the image.
@@ -142,6 +149,13 @@ struct FieldFit {
   /// the refit's window, in noise scales s: tight enough that a second population (a person a
   /// few noise levels off the background) cannot join the fit and tilt it. > 0.
   double refit_window_scales = 2.0;
+  /// The refit's model: the residuals' `center` model, or a rigid field (rigid_field.hpp) fitted
+  /// from the affine one. Rigid needs `camera` and the matches' depths (a match without one
+  /// moves as a point at infinity). The SLAM example's frame tracker refits rigidly in the
+  /// rounds after the first refinement (later_rounds_config).
+  RefitModel refit_model = RefitModel::Center;
+  /// [px] the intrinsics of the predicted pixels, for RefitModel::Rigid
+  PinholeCamera<double> camera{};
 };
 
 /// The HBOS screen on reprojection residuals. Default-constructed = the recommended screen; see
@@ -316,6 +330,12 @@ inline void validate(const HbosScreen& s) {
           s.field.balance_cell_px);
   require(std::isfinite(s.field.refit_window_scales) && s.field.refit_window_scales > 0.0,
           "FieldFit refit_window_scales must be finite and > 0, got ", s.field.refit_window_scales);
+  if (s.field.refit_model == RefitModel::Rigid) {
+    require(s.field.refit_on_static && s.residuals.center != ResidualCenter::None,
+            "FieldFit refit_model Rigid refits the field on the matches that look static: it needs "
+            "refit_on_static and a residuals.center other than None");
+    validate(s.field.camera);
+  }
   require(!s.gate.enabled || std::holds_alternative<FixedThreshold>(s.threshold),
           "HbosScreen's noise gate needs a FixedThreshold score cut");
   require(!s.gate.enabled || s.angle == AngleFeature::None,
@@ -354,23 +374,56 @@ inline void validate(const ScreenConfig& c) {
 
 }  // namespace detail
 
-/// The config of the screening rounds after the first (the rounds of a pose optimisation, after
-/// a refinement on the survivors) when their noise gate takes the floor `later_gate_floor`
-/// [px/sigma] instead of `config`'s own; nullopt when nothing would change: 0 (every round
-/// alike), a strategy without a noise gate, or the same floor. One rule for every caller that
-/// writes the rounds loop (projection.hpp's helper, the SLAM example's screening stage).
-/// \throws InvalidArgument if `later_gate_floor` is negative or not finite.
+/// How the screening rounds after the first (the rounds of a pose optimisation, after a
+/// refinement on the survivors) differ from the first, for a strategy with a noise gate.
+struct LaterRounds {
+  /// [px/sigma] their noise gate's floor instead of the config's own; 0 = the config's own
+  double gate_floor = 0.0;
+  /// With intrinsics: the default screen refits its field as a rigid field (RefitModel::Rigid)
+  /// with them. After a refinement, what an affine field still fits on real frames is mostly
+  /// structure no pose error gives (docs/results.md, "A field only a camera motion can give").
+  std::optional<PinholeCamera<double>> rigid_field;
+};
+
+/// The config of the screening rounds after the first, as `later` says; nullopt when nothing
+/// would change: a strategy without a noise gate, or a gate floor of 0 (every round alike) or
+/// the config's own and no rigid field (or a config that already refits rigidly with the same
+/// intrinsics). One rule for every caller that writes the rounds loop (projection.hpp's helper,
+/// the SLAM example's screening stage).
+/// \throws InvalidArgument if the gate floor is negative or not finite, or the intrinsics are
+/// not valid (PinholeCamera).
+[[nodiscard]] inline std::optional<ScreenConfig> later_rounds_config(const ScreenConfig& config,
+                                                                     const LaterRounds& later) {
+  detail::require(std::isfinite(later.gate_floor) && later.gate_floor >= 0.0,
+                  "the later rounds' gate floor must be finite and >= 0, got ", later.gate_floor);
+  if (later.rigid_field) detail::validate(*later.rigid_field);
+  const auto* gated = std::get_if<HbosScreen>(&config.strategy);
+  if (gated == nullptr || !gated->gate.enabled) return std::nullopt;
+  const bool new_floor = later.gate_floor != 0.0 && gated->gate.floor != later.gate_floor;
+  const auto same_camera = [](const PinholeCamera<double>& a, const PinholeCamera<double>& b) {
+    return a.fx == b.fx && a.fy == b.fy && a.cx == b.cx && a.cy == b.cy;
+  };
+  // A screen without a field to refit has nothing to make rigid.
+  const bool can_refit =
+      gated->field.refit_on_static && gated->residuals.center != ResidualCenter::None;
+  const bool new_field = later.rigid_field && can_refit &&
+                         !(gated->field.refit_model == RefitModel::Rigid &&
+                           same_camera(gated->field.camera, *later.rigid_field));
+  if (!new_floor && !new_field) return std::nullopt;
+  ScreenConfig result = config;
+  HbosScreen& s = std::get<HbosScreen>(result.strategy);
+  if (new_floor) s.gate.floor = later.gate_floor;
+  if (new_field) {
+    s.field.refit_model = RefitModel::Rigid;
+    s.field.camera = *later.rigid_field;
+  }
+  return result;  // valid: `config` was, a floor > 0 and valid intrinsics keep it so
+}
+
+/// later_rounds_config with a gate floor alone.
 [[nodiscard]] inline std::optional<ScreenConfig> later_rounds_config(const ScreenConfig& config,
                                                                      double later_gate_floor) {
-  detail::require(std::isfinite(later_gate_floor) && later_gate_floor >= 0.0,
-                  "the later rounds' gate floor must be finite and >= 0, got ", later_gate_floor);
-  const auto* gated = std::get_if<HbosScreen>(&config.strategy);
-  if (later_gate_floor == 0.0 || gated == nullptr || !gated->gate.enabled ||
-      gated->gate.floor == later_gate_floor)
-    return std::nullopt;
-  ScreenConfig later = config;
-  std::get<HbosScreen>(later.strategy).gate.floor = later_gate_floor;
-  return later;  // valid: it differs from `config` by a finite floor > 0
+  return later_rounds_config(config, LaterRounds{later_gate_floor, std::nullopt});
 }
 
 /// Short name of a strategy's family, for tables and logs.

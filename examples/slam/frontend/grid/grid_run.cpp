@@ -29,17 +29,17 @@ namespace {
 std::string grid_run_settings(const Config& c, const PersonVariant& v, int frames) {
   return fmt::format(
       "dataset={} frames={} camera={} tracker={} person={} depth={} speed={} start={} mask={} "
-      "screen={} rounds={} later_floor={} mask_evidence={} track_history={} "
+      "screen={} rounds={} later_floor={} later_rigid={} mask_evidence={} track_history={} "
       "provisional_consensus={} guard={} forgetting={} rough={} ransac_px={} refit_check={} "
       "reloc_refit_check={} jump={} history_consensus={} rule={} features={} hbos={}.{}.{}",
       c.dataset.path, frames, c.dataset.camera, to_string(c.tracker), c.scenario.person_dir,
       v.depth_m, v.speed_px_per_frame, v.start_x_px, to_string(c.mask.source), c.screen.name,
-      c.screen.rounds, later_rounds_gate_floor(c), c.screen.mask_evidence, c.screen.track_history,
-      c.screen.provisional_consensus, to_json(c.guard).dump(), c.map.history.forgetting,
-      to_string(c.rough_pose.method), c.rough_pose.ransac_threshold_px, c.rough_pose.check_refit,
-      c.map.relocalisation.check_refit, to_json(c.jump_limit).dump(),
-      c.rough_pose.history_consensus, kHistoryConsensusRule, c.extraction.features, kVersionMajor,
-      kVersionMinor, kVersionPatch);
+      c.screen.rounds, later_rounds_gate_floor(c), later_rounds_rigid_field(c),
+      c.screen.mask_evidence, c.screen.track_history, c.screen.provisional_consensus,
+      to_json(c.guard).dump(), c.map.history.forgetting, to_string(c.rough_pose.method),
+      c.rough_pose.ransac_threshold_px, c.rough_pose.check_refit, c.map.relocalisation.check_refit,
+      to_json(c.jump_limit).dump(), c.rough_pose.history_consensus, kHistoryConsensusRule,
+      c.extraction.features, kVersionMajor, kVersionMinor, kVersionPatch);
 }
 
 std::string grid_cache_file(const Config& c, const PersonVariant& v) {
