@@ -3,7 +3,7 @@
 /// The library version: the single source of truth (CMake parses it from here).
 
 #define HBOS_VERSION_MAJOR 0
-#define HBOS_VERSION_MINOR 4
+#define HBOS_VERSION_MINOR 5
 #define HBOS_VERSION_PATCH 0
 
 namespace hbos {

@@ -118,7 +118,7 @@ TEST_CASE("the rigid fit recovers the motion its residuals come from, past a per
     m.add(p, moved_pixel(camera, p, 2.0, motion) + Vec2(6.0, 1.0));
     m.set_depth(m.size() - 1, 2.0);
   }
-  std::vector<std::uint8_t> scratch;
+  hbos::detail::RigidFitWork scratch;
   const auto all = [](Eigen::Index) { return true; };
   // Started from a constant field at the median of the statics' shift: the person lies outside
   // the 3-sigma window from the start, and the statics' support grows to all of them.
@@ -134,7 +134,8 @@ TEST_CASE("the rigid fit recovers the motion its residuals come from, past a per
   }
   CHECK(worst < 0.15);  // px: the noise (0.3 px over 400 matches) and the linearisation
   Eigen::Index person_inside = 0;
-  for (Eigen::Index i = 400; i < 500; ++i) person_inside += scratch[static_cast<std::size_t>(i)];
+  for (Eigen::Index i = 400; i < 500; ++i)
+    person_inside += scratch.inside[static_cast<std::size_t>(i)];
   CHECK(person_inside == 0);
 
   SECTION("too few supporting matches keep the start") {
@@ -155,7 +156,7 @@ TEST_CASE("a rigid field does not absorb a field no camera motion gives", "[rigi
     return Vec2(0.004 * (p.x() - camera.cx), -0.004 * (p.y() - camera.cy));
   };
   const hbos::Matchesd m = moved_matches(camera, 500, 2.0, 2.0, Vec6::Zero(), stretch, 0.05, 13);
-  std::vector<std::uint8_t> scratch;
+  hbos::detail::RigidFitWork scratch;
   const auto all = [](Eigen::Index) { return true; };
   const hbos::ResidualField<double> rigid =
       hbos::detail::fit_rigid_field(m, all, {}, camera, 10.0, 5, scratch);

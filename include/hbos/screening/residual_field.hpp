@@ -52,9 +52,14 @@ struct ResidualField {
   /// c(p, q); q = 0 for a point of unknown depth (it moves as a point at infinity would).
   [[nodiscard]] Eigen::Matrix<Scalar, 2, 1> at(const Eigen::Matrix<Scalar, 2, 1>& p,
                                                Scalar inverse_depth = Scalar(0)) const {
-    Eigen::Matrix<Scalar, 2, 1> c = offset + gradient * (p - origin);
+    Eigen::Matrix<Scalar, 2, 1> c = affine_at(p);
     if (rigid) c += camera.pixel_motion(p, inverse_depth, motion);
     return c;
+  }
+  /// The affine part alone: c(p, q) of a field that is not `rigid`, without the branch (for
+  /// loops over every match that decide the model once).
+  [[nodiscard]] Eigen::Matrix<Scalar, 2, 1> affine_at(const Eigen::Matrix<Scalar, 2, 1>& p) const {
+    return offset + gradient * (p - origin);
   }
 };
 

@@ -233,6 +233,9 @@ class ReprojectionScreen {
       }
       // The evidence histograms: values in [0, 64], bins no narrower than 0.1.
       evidence_hist_.reserve(641);
+      // A rigid refit's rows (15 doubles a match) only where this config asks for it; a caller
+      // that switches to one later (later_rounds_config) allocates them on its first frame.
+      if (s->field.refit_model == RefitModel::Rigid) rigid_work_.reserve(k);
     }
   }
 
@@ -249,8 +252,12 @@ class ReprojectionScreen {
   void fit_field(const Matches<Scalar>& matches, const HbosScreen& s, const Use& use, double window,
                  ResidualCenter center);
   void centred_magnitudes(const Matches<Scalar>& matches, const HbosScreen& s);
+  /// The loop of centred_magnitudes, with c(p_i) = centre(i).
+  template <class Centre>
+  void centred_magnitudes(const Matches<Scalar>& matches, const HbosScreen& s,
+                          const Centre& centre);
   /// The balanced weight (samples_, as fit_field left it) of the fit set's matches whose
-  /// whitened residual lies within `window` of `field`.
+  /// whitened residual lies within `window` of `field`, an affine field (the constant refit).
   [[nodiscard]] Scalar field_support(const Matches<Scalar>& matches,
                                      const ResidualField<Scalar>& field, double window) const;
   /// Steps 3-4: the noise gate, then (unless `evidence` is false: a refit follows that makes
@@ -288,7 +295,8 @@ class ReprojectionScreen {
   Histogram<Scalar> magnitude_hist_, angle_hist_, evidence_hist_;
   std::vector<Scalar> angle_, fit_values_, scratch_;
   std::vector<Scalar> dx_, dy_, depth_, coherence_, proximity_, history_;
-  std::vector<std::uint8_t> angle_used_, fired_, looks_static_, rigid_inside_;
+  std::vector<std::uint8_t> angle_used_, fired_, looks_static_;
+  detail::RigidFitWork rigid_work_;
   std::vector<std::uint32_t> cell_counts_, cell_of_, flagged_index_;
   std::vector<Scalar> cell_factor_;
   detail::FieldSamples<Scalar> samples_;
@@ -368,9 +376,7 @@ Scalar ReprojectionScreen<Scalar>::field_support(const Matches<Scalar>& matches,
   for (Index i = 0; i < matches.size(); ++i) {
     if (!in_fit(matches, i)) continue;
     const Eigen::Matrix<Scalar, 2, 1> d =
-        matches.residual(i) -
-        field.at(matches.predicted(i),
-                 field.rigid ? inverse_depth_of(matches.depth(i)) : Scalar(0));
+        matches.residual(i) - field.affine_at(matches.predicted(i));
     const Scalar s2 = matches.sigma(i) * matches.sigma(i);
     // Outside the window it adds +0, which leaves the sum as it is: no branch.
     support += d.squaredNorm() <= w2 * s2 ? samples_.w[k] * s2 : Scalar(0);
@@ -382,16 +388,30 @@ Scalar ReprojectionScreen<Scalar>::field_support(const Matches<Scalar>& matches,
 template <class Scalar>
 void ReprojectionScreen<Scalar>::centred_magnitudes(const Matches<Scalar>& matches,
                                                     const HbosScreen& s) {
+  const auto n = static_cast<std::size_t>(matches.size());
+  dx_.resize(n);
+  dy_.resize(n);
+  // The field's model is decided once, outside the loop over the matches.
+  const ResidualField<Scalar> field = result_.field_;
+  if (field.rigid) {
+    centred_magnitudes(matches, s, [&](Index i) {
+      return field.at(matches.predicted(i), inverse_depth_of(matches.depth(i)));
+    });
+  } else {
+    centred_magnitudes(matches, s, [&](Index i) { return field.affine_at(matches.predicted(i)); });
+  }
+}
+
+template <class Scalar>
+template <class Centre>
+void ReprojectionScreen<Scalar>::centred_magnitudes(const Matches<Scalar>& matches,
+                                                    const HbosScreen& s, const Centre& centre) {
   ScreenResult<Scalar>& r = result_;
   const Index n = matches.size();
   const auto clip = static_cast<Scalar>(s.magnitude_clip);
-  dx_.resize(static_cast<std::size_t>(n));
-  dy_.resize(static_cast<std::size_t>(n));
   for (Index i = 0; i < n; ++i) {
     const auto k = static_cast<std::size_t>(i);
-    const Eigen::Matrix<Scalar, 2, 1> c =
-        r.field_.rigid ? r.field_.at(matches.predicted(i), inverse_depth_of(matches.depth(i)))
-                       : r.field_.at(matches.predicted(i));
+    const Eigen::Matrix<Scalar, 2, 1> c = centre(i);
     Eigen::Matrix<Scalar, 2, 1> d = matches.residual(i) - c;
     // A stereo component shifts with the pose error like u does: center it by c_x.
     const Scalar right = matches.has_right(i) ? matches.right_residual(i) - c.x() : Scalar(0);
@@ -657,7 +677,7 @@ void ReprojectionScreen<Scalar>::run_gated(const Matches<Scalar>& matches, const
       if (s.field.refit_model == RefitModel::Rigid)
         result_.field_ = detail::fit_rigid_field(matches, looks_static, result_.field_,
                                                  s.field.camera, std::max(window, 1e-3),
-                                                 s.residuals.center_iterations, rigid_inside_);
+                                                 s.residuals.center_iterations, rigid_work_);
       centred_magnitudes(matches, s);
       gate_and_evidence(matches, s);
     }
