@@ -309,7 +309,7 @@ TEST_CASE("dynbench --help names the front end's on/off settings and their defau
   CHECK(help.find("the tracker's own", later) < help.find("--rounds", later));
   const std::size_t field = help.find("--later-rounds-field");
   REQUIRE(field != std::string::npos);
-  CHECK(help.find("frame rigid, map affine", field) != std::string::npos);
+  CHECK(help.find("default: rigid, for both trackers", field) != std::string::npos);
 }
 
 TEST_CASE("dynbench end to end on a short rendered scenario", "[dynbench][render]") {

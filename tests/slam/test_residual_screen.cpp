@@ -184,18 +184,17 @@ TEST_CASE("the screening stage's later rounds gate at their own floor, the first
   CHECK(chi2_with(2.0) == chi2_with(0.0));
 }
 
-TEST_CASE("the screening stage refits a rigid field in the later rounds: the frame tracker's own",
+TEST_CASE("the screening stage refits a rigid field in the later rounds: both trackers' own",
           "[screen_stage]") {
   slam::Config map_config, frame_config;
   map_config.tracker = slam::TrackerKind::kMap;
   CHECK(slam::later_rounds_rigid_field(frame_config));
-  CHECK_FALSE(slam::later_rounds_rigid_field(map_config));
-  CHECK(slam::screen_stage_for(frame_config).later_rounds_rigid_field == true);
-  CHECK(slam::screen_stage_for(map_config).later_rounds_rigid_field == false);
-  map_config.screen.later_rounds_rigid_field = true;  // set: the same for either tracker
-  frame_config.screen.later_rounds_rigid_field = false;
   CHECK(slam::later_rounds_rigid_field(map_config));
-  CHECK_FALSE(slam::later_rounds_rigid_field(frame_config));
+  CHECK(slam::screen_stage_for(frame_config).later_rounds_rigid_field == true);
+  CHECK(slam::screen_stage_for(map_config).later_rounds_rigid_field == true);
+  map_config.screen.later_rounds_rigid_field = false;  // set: taken as it is
+  CHECK_FALSE(slam::later_rounds_rigid_field(map_config));
+  CHECK_FALSE(slam::screen_stage_for(map_config).later_rounds_rigid_field.value());
   CHECK_FALSE(slam::ScreenStageConfig{}.later_rounds_rigid_field.has_value());
 
   std::size_t tail = 0;

@@ -14,8 +14,7 @@ double later_rounds_gate_floor(const Config& config) {
 }
 
 bool later_rounds_rigid_field(const Config& config) {
-  if (config.screen.later_rounds_rigid_field) return *config.screen.later_rounds_rigid_field;
-  return config.tracker == TrackerKind::kFrame;
+  return config.screen.later_rounds_rigid_field.value_or(true);
 }
 
 ScreenStageConfig screen_stage_for(const Config& config) {

@@ -159,7 +159,7 @@ struct ScreenStageConfig {
   std::optional<double> later_rounds_gate_floor;
   /// The default screen refits its residual field as the pixel shift of a small rigid motion
   /// (hbos::RefitModel::Rigid, with the tracker's camera and the points' depths) in the rounds
-  /// after the first, instead of an affine field; unset = the tracker's own
+  /// after the first, instead of an affine field; unset = on, for both trackers
   /// (later_rounds_rigid_field(const Config&)). After a refinement on the survivors, an affine
   /// field on real frames fits structure no pose error gives, and centring it away keeps the
   /// matches the rigid refinement cannot agree with.
@@ -251,9 +251,9 @@ struct Config {
 /// measurements).
 [[nodiscard]] double later_rounds_gate_floor(const Config& config);
 /// Whether the default screen refits a rigid field in the rounds after the first: the setting
-/// (ScreenStageConfig::later_rounds_rigid_field), or the tracker's own. The frame tracker's is
-/// on; the map tracker's is off (measured in docs/results.md, "A field only a camera motion can
-/// give").
+/// (ScreenStageConfig::later_rounds_rigid_field), or on. Measured through both trackers in
+/// docs/results.md ("A field only a camera motion can give"); each adopted by a rule written
+/// before its held-out run.
 [[nodiscard]] bool later_rounds_rigid_field(const Config& config);
 /// config.screen with later_rounds_gate_floor and later_rounds_rigid_field set to the values
 /// above: what a tracker screens with.

@@ -84,7 +84,7 @@ inline void add_front_end_options(CLI::App& app, Config& c) {
          [&c](const std::string& model) { c.screen.later_rounds_rigid_field = model == "rigid"; },
          "the field the default screen refits on the matches that look static in the rounds "
          "after the first refinement: rigid (the pixel shift of a small camera motion) or affine "
-         "(default: the tracker's own: frame rigid, map affine; docs/results.md)")
+         "(default: rigid, for both trackers; docs/results.md)")
       ->check(CLI::IsMember({"rigid", "affine"}));
   app.add_option("--prediction-limit-m", c.jump_limit.max_from_prediction_m,
                  "both trackers: the farthest [m] a RANSAC rough pose may put the camera from the "

@@ -93,7 +93,7 @@ struct IteratedScreenOptions {
   /// small rigid motion (RefitModel::Rigid, with `camera` and the points' depths) instead of an
   /// affine field: after a refinement, an affine field also fits structure no pose error gives,
   /// and centring that away keeps the matches the refinement cannot agree with. The SLAM
-  /// example's frame tracker does (docs/results.md, "A field only a camera motion can give").
+  /// example's trackers do (docs/results.md, "A field only a camera motion can give").
   bool later_rigid_field = false;
 };
 

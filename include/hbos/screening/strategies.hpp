@@ -151,8 +151,8 @@ struct FieldFit {
   double refit_window_scales = 2.0;
   /// The refit's model: the residuals' `center` model, or a rigid field (rigid_field.hpp) fitted
   /// from the affine one. Rigid needs `camera` and the matches' depths (a match without one
-  /// moves as a point at infinity). The SLAM example's frame tracker refits rigidly in the
-  /// rounds after the first refinement (later_rounds_config).
+  /// moves as a point at infinity). The SLAM example's trackers refit rigidly in the rounds
+  /// after the first refinement (later_rounds_config).
   RefitModel refit_model = RefitModel::Center;
   /// [px] the intrinsics of the predicted pixels, for RefitModel::Rigid
   PinholeCamera<double> camera{};
