@@ -117,6 +117,21 @@ Frame room_with_a_tail(std::size_t& tail_begin) {
   return f;
 }
 
+/// Screens `f` with a stage of `config` that screened it before under `first_refiner`, and
+/// with a fresh stage, both under `refiner`: nothing may carry over from one call to the next.
+void check_used_stage_gives_fresh_bits(const slam::ScreenStageConfig& config, const Frame& f,
+                                       const slam::PoseRefiner& first_refiner,
+                                       const slam::PoseRefiner& refiner) {
+  slam::ResidualScreen used(config), fresh(config);
+  Eigen::Isometry3d T1 = Eigen::Isometry3d::Identity(), T2 = T1;
+  (void)used.screen(f.points, f.observed, f.sigma, T1, first_refiner, f.evidence);
+  T1 = Eigen::Isometry3d::Identity();
+  const slam::ScreenOutcome again = used.screen(f.points, f.observed, f.sigma, T1, refiner);
+  const slam::ScreenOutcome first = fresh.screen(f.points, f.observed, f.sigma, T2, refiner);
+  CHECK(again.magnitude == first.magnitude);
+  CHECK(T1.matrix() == T2.matrix());
+}
+
 }  // namespace
 
 TEST_CASE("the screening stage's later rounds gate at their own floor, the first at chi^2's",
@@ -159,14 +174,7 @@ TEST_CASE("the screening stage's later rounds gate at their own floor, the first
   {
     slam::ScreenStageConfig config;
     config.later_rounds_gate_floor = 2.0;
-    slam::ResidualScreen used(config), fresh(config);
-    Eigen::Isometry3d T1 = Eigen::Isometry3d::Identity(), T2 = T1;
-    (void)used.screen(f.points, f.observed, f.sigma, T1, refiner, f.evidence);
-    T1 = Eigen::Isometry3d::Identity();
-    const slam::ScreenOutcome again = used.screen(f.points, f.observed, f.sigma, T1, refiner);
-    const slam::ScreenOutcome first = fresh.screen(f.points, f.observed, f.sigma, T2, refiner);
-    CHECK(again.magnitude == first.magnitude);
-    CHECK(T1.matrix() == T2.matrix());
+    check_used_stage_gives_fresh_bits(config, f, refiner, refiner);
   }
   // With 0 every round keeps chi^2's floor.
   const slam::ScreenOutcome same = screen_with(4, 0.0);
@@ -224,14 +232,7 @@ TEST_CASE("the screening stage refits a rigid field in the later rounds: both tr
   hbos::PinholeCamerad other = kCamera;
   other.fx *= 1.05;
   const slam::PoseRefiner other_refiner(slam::RefinementConfig{}, other);
-  slam::ResidualScreen used(stage_config(4, true)), fresh(stage_config(4, true));
-  Eigen::Isometry3d T1 = Eigen::Isometry3d::Identity(), T2 = T1;
-  (void)used.screen(f.points, f.observed, f.sigma, T1, other_refiner, f.evidence);
-  T1 = Eigen::Isometry3d::Identity();
-  const slam::ScreenOutcome again = used.screen(f.points, f.observed, f.sigma, T1, refiner);
-  const slam::ScreenOutcome first = fresh.screen(f.points, f.observed, f.sigma, T2, refiner);
-  CHECK(again.magnitude == first.magnitude);
-  CHECK(T1.matrix() == T2.matrix());
+  check_used_stage_gives_fresh_bits(stage_config(4, true), f, other_refiner, refiner);
 }
 
 TEST_CASE("the screening stage refuses a later rounds' floor that is negative or not finite",

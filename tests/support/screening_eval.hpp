@@ -77,6 +77,14 @@ struct Conditions {
 }
 
 /// Loads a scene into a reusable Matches (monocular, with sigma and the prior flag).
+/// The share of matches first..last-1 the screen rejected.
+[[nodiscard]] inline double rejected_share(const hbos::ScreenResult<double>& r, Eigen::Index first,
+                                           Eigen::Index last) {
+  Eigen::Index rejected = 0;
+  for (Eigen::Index i = first; i < last; ++i) rejected += r.inlier(i) ? 0 : 1;
+  return static_cast<double>(rejected) / static_cast<double>(last - first);
+}
+
 inline void load_matches(const Scene& scene, hbos::Matches<double>& matches) {
   matches.clear();
   matches.reserve(scene.size());

@@ -14,6 +14,8 @@
 #include <random>
 #include <vector>
 
+#include "../support/screening_eval.hpp"
+
 namespace {
 
 using Vec2 = Eigen::Vector2d;
@@ -51,11 +53,7 @@ hbos::Matchesd moved_matches(const hbos::PinholeCamerad& camera, int n, double z
 
 Vec2 no_shift(const Vec2&) { return Vec2::Zero(); }
 
-double rejected_share(const hbos::ScreenResult<double>& r, Eigen::Index first, Eigen::Index last) {
-  Eigen::Index rejected = 0;
-  for (Eigen::Index i = first; i < last; ++i) rejected += r.inlier(i) ? 0 : 1;
-  return static_cast<double>(rejected) / static_cast<double>(last - first);
-}
+using hbos_test::rejected_share;
 
 }  // namespace
 

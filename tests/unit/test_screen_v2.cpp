@@ -14,6 +14,8 @@
 #include <string>
 #include <vector>
 
+#include "../support/screening_eval.hpp"
+
 namespace {
 
 using Vec2 = Eigen::Vector2d;
@@ -55,11 +57,7 @@ hbos::HbosScreen without_detector_floor() {
   return s;
 }
 
-double rejected_share(const hbos::ScreenResult<double>& r, Eigen::Index first, Eigen::Index last) {
-  Eigen::Index rejected = 0;
-  for (Eigen::Index i = first; i < last; ++i) rejected += r.inlier(i) ? 0 : 1;
-  return static_cast<double>(rejected) / static_cast<double>(last - first);
-}
+using hbos_test::rejected_share;
 
 }  // namespace
 
