@@ -4,7 +4,7 @@
 
 #define HBOS_VERSION_MAJOR 0
 #define HBOS_VERSION_MINOR 5
-#define HBOS_VERSION_PATCH 0
+#define HBOS_VERSION_PATCH 1
 
 namespace hbos {
 inline constexpr int kVersionMajor = HBOS_VERSION_MAJOR;

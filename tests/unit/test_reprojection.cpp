@@ -319,6 +319,31 @@ TEST_CASE("PinholeCamera projects and back-projects consistently", "[reprojectio
   CHECK((camera.back_project(uv, 2.0) - p).norm() < 1e-12);
 }
 
+TEST_CASE("PinholeCamera converts between scalar types and compares all four intrinsics",
+          "[reprojection]") {
+  const hbos::PinholeCamerad tum1{517.306408, 516.469215, 318.643040, 255.313989};
+  const hbos::PinholeCameraf as_float = tum1.cast<float>();
+  CHECK(as_float.fx == static_cast<float>(tum1.fx));
+  CHECK(as_float.fy == static_cast<float>(tum1.fy));
+  CHECK(as_float.cx == static_cast<float>(tum1.cx));
+  CHECK(as_float.cy == static_cast<float>(tum1.cy));
+  // Back to double: each value is the float's, so equal only where float holds it exactly.
+  const hbos::PinholeCamerad round_trip = as_float.cast<double>();
+  CHECK(round_trip.fx == static_cast<double>(as_float.fx));
+  CHECK(round_trip != tum1);
+  CHECK(tum1.cast<double>() == tum1);
+
+  // Each intrinsic on its own breaks equality (a cache keyed on the camera must see it).
+  for (int field = 0; field < 4; ++field) {
+    hbos::PinholeCamerad other = tum1;
+    double* values[] = {&other.fx, &other.fy, &other.cx, &other.cy};
+    *values[field] = std::nextafter(*values[field], 1e9);
+    CHECK(other != tum1);
+    CHECK_FALSE(other == tum1);
+  }
+  CHECK(hbos::PinholeCamerad{} == hbos::PinholeCamerad{});
+}
+
 TEST_CASE("project_matches builds predictions from 3D points, a pose and intrinsics",
           "[reprojection]") {
   const hbos::PinholeCamerad camera;

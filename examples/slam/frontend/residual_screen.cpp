@@ -29,10 +29,6 @@ double value_or_nan(const std::vector<double>& column, std::size_t i) {
   return i < column.size() ? column[i] : std::numeric_limits<double>::quiet_NaN();
 }
 
-bool same_intrinsics(const std::optional<hbos::PinholeCamerad>& a, const hbos::PinholeCamerad& b) {
-  return a && a->fx == b.fx && a->fy == b.fy && a->cx == b.cx && a->cy == b.cy;
-}
-
 }  // namespace
 
 void keep_out_provisional(const std::vector<std::uint8_t>& provisional, int min_survivors,
@@ -105,7 +101,7 @@ ScreenOutcome ResidualScreen::screen(const std::vector<Eigen::Vector3d>& points_
   const std::size_t n = points_prev.size();
   const hbos::PinholeCamerad& camera = refiner.camera();
   if (impl_->screen && config_.later_rounds_rigid_field.value_or(false) &&
-      !same_intrinsics(impl_->rigid_camera, camera)) {
+      impl_->rigid_camera != camera) {
     impl_->later = hbos::later_rounds_config(
         impl_->first, hbos::LaterRounds{config_.later_rounds_gate_floor.value_or(0.0), camera});
     impl_->rigid_camera = camera;

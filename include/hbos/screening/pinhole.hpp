@@ -59,6 +59,22 @@ struct PinholeCamera {
     motion_jacobian(uv, inverse_depth, ju, jv);
     return {ju.dot(motion), jv.dot(motion)};
   }
+
+  /// The same intrinsics in another scalar type (each one converted with static_cast).
+  template <class Other>
+  [[nodiscard]] PinholeCamera<Other> cast() const {
+    return {static_cast<Other>(fx), static_cast<Other>(fy), static_cast<Other>(cx),
+            static_cast<Other>(cy)};
+  }
+
+  /// Exact equality of the four intrinsics: whether a cached value built for one camera still
+  /// holds for another.
+  [[nodiscard]] friend bool operator==(const PinholeCamera& a, const PinholeCamera& b) {
+    return a.fx == b.fx && a.fy == b.fy && a.cx == b.cx && a.cy == b.cy;
+  }
+  [[nodiscard]] friend bool operator!=(const PinholeCamera& a, const PinholeCamera& b) {
+    return !(a == b);
+  }
 };
 
 using PinholeCamerad = PinholeCamera<double>;

@@ -122,14 +122,7 @@ const ScreenResult<Scalar>& screen_and_refine_pose(
   // a throw included.
   const ScreenConfig first = screen.config();
   LaterRounds later_rounds{options.later_gate_floor, std::nullopt};
-  if (options.later_rigid_field) {
-    PinholeCamera<double> intrinsics;
-    intrinsics.fx = static_cast<double>(camera.fx);
-    intrinsics.fy = static_cast<double>(camera.fy);
-    intrinsics.cx = static_cast<double>(camera.cx);
-    intrinsics.cy = static_cast<double>(camera.cy);
-    later_rounds.rigid_field = intrinsics;
-  }
+  if (options.later_rigid_field) later_rounds.rigid_field = camera.template cast<double>();
   const std::optional<ScreenConfig> later = later_rounds_config(first, later_rounds);
   const bool switch_config = later.has_value();
   // (The caller's config was validated when it was set, so putting it back cannot throw.)

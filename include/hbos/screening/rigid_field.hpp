@@ -122,10 +122,7 @@ ResidualField<Scalar> fit_rigid_field(const Matches<Scalar>& matches, const Use&
   ResidualField<Scalar> field;
   field.rigid = true;
   field.motion = motion.cast<Scalar>();
-  field.camera.fx = static_cast<Scalar>(camera.fx);
-  field.camera.fy = static_cast<Scalar>(camera.fy);
-  field.camera.cx = static_cast<Scalar>(camera.cx);
-  field.camera.cy = static_cast<Scalar>(camera.cy);
+  field.camera = camera.cast<Scalar>();
   return field;
 }
 

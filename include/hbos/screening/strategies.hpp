@@ -400,15 +400,12 @@ struct LaterRounds {
   const auto* gated = std::get_if<HbosScreen>(&config.strategy);
   if (gated == nullptr || !gated->gate.enabled) return std::nullopt;
   const bool new_floor = later.gate_floor != 0.0 && gated->gate.floor != later.gate_floor;
-  const auto same_camera = [](const PinholeCamera<double>& a, const PinholeCamera<double>& b) {
-    return a.fx == b.fx && a.fy == b.fy && a.cx == b.cx && a.cy == b.cy;
-  };
   // A screen without a field to refit has nothing to make rigid.
   const bool can_refit =
       gated->field.refit_on_static && gated->residuals.center != ResidualCenter::None;
-  const bool new_field = later.rigid_field && can_refit &&
-                         !(gated->field.refit_model == RefitModel::Rigid &&
-                           same_camera(gated->field.camera, *later.rigid_field));
+  const bool new_field =
+      later.rigid_field && can_refit &&
+      !(gated->field.refit_model == RefitModel::Rigid && gated->field.camera == *later.rigid_field);
   if (!new_floor && !new_field) return std::nullopt;
   ScreenConfig result = config;
   HbosScreen& s = std::get<HbosScreen>(result.strategy);
