@@ -84,13 +84,14 @@ def rss(design, target, w):
     return float(r @ r), int(rank)
 
 
-def models(d, cam):
+def design_columns(d, cam):
+    """The stacked columns of the models for the rows of d (the n u-components, then the n
+    v-components): the constant (2), the affine terms (4) and the small camera motion (6)."""
     fx, fy, cx, cy = cam
-    u, v, rx, ry, w, z = d.T
+    u, v, z = d[:, 0], d[:, 1], d[:, 5]
     n = len(u)
     x, y, q = (u - cx) / fx, (v - cy) / fy, 1.0 / z
     zero, one = np.zeros(n), np.ones(n)
-    # Stacked rows: the n u-components, then the n v-components.
     const = np.vstack([np.column_stack([one, zero]), np.column_stack([zero, one])])
     o = np.array([u.mean(), v.mean()])
     du, dv = (u - o[0]) / 100, (v - o[1]) / 100
@@ -98,6 +99,13 @@ def models(d, cam):
     pose = np.vstack([
         np.column_stack([fx * q, zero, -fx * x * q, -fx * x * y, fx * (1 + x * x), -fx * y]),
         np.column_stack([zero, fy * q, -fy * y * q, -fy * (1 + y * y), fy * x * y, fy * x])])
+    return const, affine, pose
+
+
+def models(d, cam):
+    u, v, rx, ry, w, z = d.T
+    n = len(u)
+    const, affine, pose = design_columns(d, cam)
     target = np.concatenate([rx, ry])
     ww = np.concatenate([w, w])
     out = {}
