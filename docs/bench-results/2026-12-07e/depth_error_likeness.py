@@ -108,6 +108,10 @@ def main():
         print(f"{label}: {len(recs)} fits; medians over the fits")
         for key in recs[0]:
             print(f"  {key:32s} {np.median([r[key] for r in recs]):8.2f}")
+    depths = np.concatenate([d[:, 5] for _, d in fits])
+    step = np.median([np.linalg.norm(t) for t in ts])
+    print(f"median depth {np.median(depths):.3f} m, median step {1000 * step:.2f} mm: a prediction moves "
+          f"{fpl.CAMERAS['tum1'][0] * step / np.median(depths):.2f} px per unit of relative depth error")
     C = np.array(last_round_coefficients)
     print("quadratic depth error, true t, last round of each pair (%d pairs):" % len(C))
     for j, k in enumerate(TERMS):

@@ -8,7 +8,8 @@ motion, stop 48), take each match's residual left after P, and average it in the
 drawn 300 times their length. A field only a pose error leaves would show no pattern; noise
 leaves short arrows pointing anywhere.
 
-Also prints the cell means' rms over every last fit of each dump.
+Also prints, over every last fit of each dump, the cell means' rms, the matches a fit has and
+the share of them in the left 60 % of the image.
 
 usage: python3 field_after_rigid_fit_plot.py REAL_DUMP RENDERED_DUMP OUT.png
 """
@@ -80,14 +81,18 @@ def main():
             ax.set_xticks([0, 320, 640])
             ax.set_yticks([0, 240, 480])
     for label, path, cam in rows:
-        rms = []
+        rms, size, left_share = [], [], []
         for head, d in list(fpl.blocks(path))[3::4]:
             d = d[fpl.support(d, d[:, 4], float(head["window"]))]
+            size.append(len(d))
+            left_share.append(np.mean(d[:, 0] < 0.6 * 640))
             cells = cell_means(d, *left_after_pose(d, cam))
             if len(cells):
                 rms.append(np.sqrt(np.mean(cells[:, 2] ** 2 + cells[:, 3] ** 2)))
         q1, q2, q3 = np.percentile(rms, [25, 50, 75])
-        print(f"{label}: cell means rms over {len(rms)} last fits: median {q2:.3f} px, quartiles {q1:.3f}-{q3:.3f}")
+        print(f"{label}: cell means rms over {len(rms)} last fits: median {q2:.3f} px, quartiles {q1:.3f}-{q3:.3f}; "
+              f"matches per fit (support) median {np.median(size):.0f}; "
+              f"share in the left 60 % of the image median {np.median(left_share):.2f}")
     fig.suptitle("The later rounds' field after the best small camera motion is removed "
                  f"(cell means, arrows x{SCALE:.0f}); real frames above, rendered below", fontsize=11)
     fig.tight_layout()
