@@ -42,3 +42,20 @@ for f in abl:
     e = s["evaluation"]
     print("%-26s %-6s ATE %.3f RPE %.2f loss %.1f" % (option, shift, e["ate"]["rmse"] * 100,
           e["rpe"]["trans_m"]["rmse"] * 1000, s["static_match_loss_share"] * 100))
+# The throwaway part switches (part_ablation_env_patch.diff): X_ABL names the default's parts
+# turned off (coh = coherence, field = no centring, refit = no refit on the statics, hist = the
+# history evidence, gate = the gate at its floor; with "1" in the name in round 1 only;
+# "none"/"x" = nothing off). xabl_<parts>_<shift>: 4 rounds; xr1_<parts>_<shift>: --rounds 1;
+# xdr_<ratio>_r<rounds>_<shift>: coherence's depth layers X_DR thick.
+for prefix, label in (("xabl_", "4 rounds, parts off"), ("xr1_", "1 round, parts off"),
+                      ("xdr_", "coherence depth_ratio, rounds")):
+    runs = sorted(glob.glob(f"{d}/{prefix}*/summary.json"))
+    if runs:
+        print(f"\n{label} | depth shift | ATE cm | RPE mm/frame | statics lost %")
+    for f in runs:
+        name = f.split("/")[-2][len(prefix):]
+        head, shift = name.rsplit("_", 2)[0], "_".join(name.rsplit("_", 2)[1:])
+        s = json.load(open(f))
+        e = s["evaluation"]
+        print("%-26s %-6s ATE %.3f RPE %.2f loss %.1f" % (head, shift, e["ate"]["rmse"] * 100,
+              e["rpe"]["trans_m"]["rmse"] * 1000, s["static_match_loss_share"] * 100))
