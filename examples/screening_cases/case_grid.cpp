@@ -93,4 +93,11 @@ std::vector<CaseSpec> holdout_grid() {
   return g;
 }
 
+std::vector<CaseSpec> static_grid() {
+  std::vector<CaseSpec> g = {make("static", "static", {}, kNone, 1),
+                             make("static_reverse", "static", {}, kNone, 101)};
+  g[1].reverse = true;
+  return g;
+}
+
 }  // namespace hbos::cases

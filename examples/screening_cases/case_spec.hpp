@@ -56,5 +56,8 @@ struct CaseSpec {
 /// The hold-out grid of scenes (tests/data/screening_cases_holdout): other
 /// people/speeds/seeds/pairs.
 [[nodiscard]] std::vector<CaseSpec> holdout_grid();
+/// The static scene alone, played forwards and backwards: no people, so it needs no more of a
+/// sequence than its frames, ground truth and camera (for sequences other than fr1/xyz).
+[[nodiscard]] std::vector<CaseSpec> static_grid();
 
 }  // namespace hbos::cases

@@ -51,12 +51,18 @@ int run(int argc, char** argv) {
   CLI::App app{"Builds labelled reprojection-residual cases from real TUM frames.",
                "hbos-screening-cases"};
   std::string fr1 = (fs::path(HBOS_SLAM_DATA_DIR) / "fr1_xyz_37").string();
-  std::string fr3, out, grid = "fixture", only;
+  std::string fr3, out, grid = "fixture", only, camera = "tum1";
   app.add_option("--fr1", fr1, "TUM folder of the static sequence (with groundtruth.txt)")
       ->capture_default_str();
-  app.add_option("--fr3", fr3, "../shared/data/tum_fr3_dynaslam_yubaoliu (the people)")->required();
-  app.add_option("--grid", grid, "which grid: fixture | holdout")
-      ->check(CLI::IsMember({"fixture", "holdout"}))
+  app.add_option("--camera", camera,
+                 "intrinsics of --fr1: preset tum1 | tum3, or a .yaml/.yml/.json file")
+      ->capture_default_str();
+  app.add_option("--fr3", fr3,
+                 "../shared/data/tum_fr3_dynaslam_yubaoliu (the people; not needed by --grid "
+                 "static)");
+  app.add_option("--grid", grid,
+                 "which grid: fixture | holdout | static (the static scene alone, both ways)")
+      ->check(CLI::IsMember({"fixture", "holdout", "static"}))
       ->capture_default_str();
   app.add_option("--out", out, "output folder (case folders and cases.json)")->required();
   app.add_option("--only", only, "build only the scene of this name (for inspection)");
@@ -71,6 +77,10 @@ int run(int argc, char** argv) {
     return app.exit(e) == 0 ? 0 : 2;
   }
 
+  if (fr3.empty() && grid != "static")
+    throw hbos::InvalidArgument(fmt::format(
+        "--fr3 is required for the {} grid: its scenes composite the people of that frame", grid));
+
   hbos::cases::CaseInputs inputs;
   inputs.sequence = hbos::slam::load_tum_sequence(fr1);
   if (inputs.sequence.unpaired_rgb > 0) {
@@ -79,10 +89,12 @@ int run(int argc, char** argv) {
         "within 0.02 s; they are skipped, so some pairs span a gap\n",
         inputs.sequence.unpaired_rgb, inputs.sequence.unpaired_rgb + inputs.sequence.size(), fr1);
   }
-  inputs.camera = hbos::slam::camera_preset("tum1");
-  inputs.people = hbos::cases::cut_people(fr3);
-  const std::vector<CaseSpec> specs =
-      grid == "fixture" ? hbos::cases::fixture_grid() : hbos::cases::holdout_grid();
+  inputs.camera = hbos::slam::load_camera(camera);
+  // The static grid composites no one: its cases need no people, so no ../shared either.
+  if (!fr3.empty()) inputs.people = hbos::cases::cut_people(fr3);
+  const std::vector<CaseSpec> specs = grid == "fixture"   ? hbos::cases::fixture_grid()
+                                      : grid == "holdout" ? hbos::cases::holdout_grid()
+                                                          : hbos::cases::static_grid();
   bool found = only.empty();
   for (const CaseSpec& s : specs) found = found || s.name == only;
   if (!found) throw hbos::InvalidArgument(fmt::format("no case '{}' in the {} grid", only, grid));
@@ -125,6 +137,8 @@ int run(int argc, char** argv) {
   manifest["format"] = 1;
   manifest["grid"] = grid;
   manifest["sequence"] = fs::path(fr1).filename().string();
+  // Absent means tum1, the camera of every case built before the option (their bytes unchanged).
+  if (camera != "tum1") manifest["camera"] = inputs.camera.name;
   manifest["frames"] = inputs.sequence.size();
   manifest["gross_sigmas"] = hbos::cases::kGrossSigmas;
   manifest["on_mask_px"] = hbos::cases::kOnMaskPx;
