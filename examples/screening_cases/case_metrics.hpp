@@ -8,6 +8,7 @@
 #include "equal_loss.hpp"
 #include "eval_strategies.hpp"
 #include "screening_cases.hpp"
+#include "static_disagreement.hpp"
 
 #include <string>
 #include <vector>
@@ -51,6 +52,9 @@ struct CaseMetrics {
   /// filled by measure_equal_loss).
   Tally default_with_history;
   std::vector<EqualLoss> equal_loss;
+  /// The statics the default and chi2 disagree on, and their residuals under the reference pose
+  /// (hbos_test::static_disagreement).
+  hbos_test::StaticDisagreement disagreement;
 };
 
 /// Screens every pair of `c` with every strategy (single round) and counts.

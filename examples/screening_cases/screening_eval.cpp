@@ -192,6 +192,68 @@ std::string equal_loss_markdown(const std::vector<CaseMetrics>& all,
   return md;
 }
 
+// One row of the disagreement table: the counts, then medians of the reference residuals.
+std::string disagreement_row(const std::string& name, const hbos_test::StaticDisagreement& d) {
+  const auto pct = [](long part, long whole) {
+    return whole > 0 ? fmt::format("{:.0f}",
+                                   100.0 * static_cast<double>(part) / static_cast<double>(whole))
+                     : std::string("-");
+  };
+  const auto med = [](const std::vector<double>& v) {
+    const double m = hbos_test::median_of(v);
+    return std::isnan(m) ? std::string("-") : fmt::format("{:.2f}", m);
+  };
+  return fmt::format("| {} | {} | {} | {} | {} ({}) | {} | {} | {} ({}) | {} | {} |\n", name,
+                     d.statics, pct(d.beside_person, d.statics), d.only_default_by_gate,
+                     d.only_default_by_evidence,
+                     pct(d.only_default_by_evidence_beside, d.only_default_by_evidence),
+                     med(d.evidence_reference), med(d.evidence_along_person), d.only_chi2,
+                     med(d.chi2_reference), med(d.all_reference), med(d.beside_along_person));
+}
+
+// Pools the disagreement counts and samples of several cases.
+void pool_into(hbos_test::StaticDisagreement& into, const hbos_test::StaticDisagreement& d) {
+  into.statics += d.statics;
+  into.beside_person += d.beside_person;
+  into.only_default_by_gate += d.only_default_by_gate;
+  into.only_default_by_evidence += d.only_default_by_evidence;
+  into.only_default_by_evidence_beside += d.only_default_by_evidence_beside;
+  into.only_chi2 += d.only_chi2;
+  for (auto [to, from] : {std::pair{&into.all_reference, &d.all_reference},
+                          std::pair{&into.evidence_reference, &d.evidence_reference},
+                          std::pair{&into.chi2_reference, &d.chi2_reference},
+                          std::pair{&into.evidence_along_person, &d.evidence_along_person},
+                          std::pair{&into.beside_along_person, &d.beside_along_person}})
+    to->insert(to->end(), from->begin(), from->end());
+}
+
+std::string disagreement_markdown(const std::vector<CaseMetrics>& all) {
+  std::string md =
+      "\n#### The statics the default and chi2 disagree on\n\n"
+      "Single round, the default against chi2 (5.991). Static = the labels' (neither keypoint on "
+      "a person, reference residual within 3 sigma). Beside a person: the keypoint within 15 px "
+      "(ORB's patch radius) of a dynamic keypoint of the same frame. Residuals are under the "
+      "reference pose, |r| / sigma [px/sigma]; 'along': the component along the nearest dynamic "
+      "keypoint's reference residual (how far the match moves with the person). Columns: "
+      "statics; % beside a person; dropped only by the default beyond its gate; dropped only by "
+      "its evidence inside the gate (% beside a person); their median residual and along; "
+      "dropped only by chi2 (their median residual); every static's median residual; the "
+      "median along of the statics beside a person.\n\n"
+      "| case | statics | beside % | default only, gate | default only, evidence (beside %) | "
+      "evidence: residual | evidence: along | chi2 only (residual) | all: residual | beside: "
+      "along |\n|---|---|---|---|---|---|---|---|---|---|\n";
+  hbos_test::StaticDisagreement ransac, pgt;
+  for (const CaseMetrics& m : all) {
+    md += disagreement_row(m.name, m.disagreement);
+    if (m.static_sequence) continue;
+    if (m.rough_pose == "ransac") pool_into(ransac, m.disagreement);
+    if (m.rough_pose == "pgt") pool_into(pgt, m.disagreement);
+  }
+  if (ransac.statics > 0) md += disagreement_row("cases with a person, RANSAC", ransac);
+  if (pgt.statics > 0) md += disagreement_row("cases with a person, perturbed GT", pgt);
+  return md;
+}
+
 std::string markdown(const std::vector<CaseMetrics>& all, const nlohmann::ordered_json& cases,
                      const std::vector<NamedScreen>& strategies) {
   std::string md = "#### Screens on the labelled real residual cases (single round)\n\n";
@@ -220,6 +282,7 @@ std::string markdown(const std::vector<CaseMetrics>& all, const nlohmann::ordere
   md += acceptance_table(
       all, [&](const CaseMetrics& m) { return hbos::cases::acceptance(m, strategies); });
   md += equal_loss_markdown(all, strategies);
+  md += disagreement_markdown(all);
   md +=
       "\n#### The rough pose and the noise\n\n"
       "Absorbed: pairs with >= 10 dynamic matches whose median whitened person residual under "
@@ -291,6 +354,21 @@ nlohmann::ordered_json to_json(const std::vector<CaseMetrics>& all,
         {"statics", h.statics},   {"static_dropped_pct", number(h.static_dropped_pct())},
         {"dynamics", h.dynamics}, {"dynamic_kept_pct", number(h.dynamic_kept_pct())},
         {"gross", h.gross},       {"gross_kept_pct", number(h.gross_kept_pct())}};
+    const auto& d = m.disagreement;
+    c["static_disagreement"] = {
+        {"statics", d.statics},
+        {"beside_person", d.beside_person},
+        {"only_default_by_gate", d.only_default_by_gate},
+        {"only_default_by_evidence", d.only_default_by_evidence},
+        {"only_default_by_evidence_beside_person", d.only_default_by_evidence_beside},
+        {"only_chi2", d.only_chi2},
+        {"median_reference_residual",
+         {{"all", number(hbos_test::median_of(d.all_reference))},
+          {"only_default_by_evidence", number(hbos_test::median_of(d.evidence_reference))},
+          {"only_chi2", number(hbos_test::median_of(d.chi2_reference))}}},
+        {"median_along_person",
+         {{"only_default_by_evidence", number(hbos_test::median_of(d.evidence_along_person))},
+          {"beside_person", number(hbos_test::median_of(d.beside_along_person))}}}};
     c["pairs_with_person"] = m.pairs_with_person;
     c["pairs_absorbed"] = m.pairs_absorbed;
     c["static_whitened_quantiles"] = {
@@ -333,6 +411,7 @@ int run(int argc, char** argv) {
     }
     CaseMetrics m = hbos::cases::measure_case(loaded, strategies);
     hbos::cases::measure_equal_loss(loaded, strategies, m);
+    m.disagreement = hbos_test::static_disagreement(loaded);
     m.name = c["name"].get<std::string>();
     m.scene = c["dir"].get<std::string>();
     m.rough_pose = c["rough_pose"].get<std::string>();
