@@ -129,7 +129,7 @@ void check_equal_loss(const std::string& root) {
 // the static matches: pooled over the cases with a person, under either rough pose, their
 // residual under the reference pose is at least 1.8 times a typical static's (measured 2.1-2.7x),
 // a share of them at least 4 times the statics' own lies within ORB's patch radius of the
-// person (measured 5.6-11x), and they move with the person (their residual's median component
+// person (measured 5.2-11x), and they move with the person (their residual's median component
 // along the nearest dynamic keypoint's exceeds that of every static beside the person).
 void check_evidence_rejects(const std::string& root) {
   for (const hbos_test::CasePose pose :
