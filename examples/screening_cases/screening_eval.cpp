@@ -211,22 +211,6 @@ std::string disagreement_row(const std::string& name, const hbos_test::StaticDis
                      med(d.chi2_reference), med(d.all_reference), med(d.beside_along_person));
 }
 
-// Pools the disagreement counts and samples of several cases.
-void pool_into(hbos_test::StaticDisagreement& into, const hbos_test::StaticDisagreement& d) {
-  into.statics += d.statics;
-  into.beside_person += d.beside_person;
-  into.only_default_by_gate += d.only_default_by_gate;
-  into.only_default_by_evidence += d.only_default_by_evidence;
-  into.only_default_by_evidence_beside += d.only_default_by_evidence_beside;
-  into.only_chi2 += d.only_chi2;
-  for (auto [to, from] : {std::pair{&into.all_reference, &d.all_reference},
-                          std::pair{&into.evidence_reference, &d.evidence_reference},
-                          std::pair{&into.chi2_reference, &d.chi2_reference},
-                          std::pair{&into.evidence_along_person, &d.evidence_along_person},
-                          std::pair{&into.beside_along_person, &d.beside_along_person}})
-    to->insert(to->end(), from->begin(), from->end());
-}
-
 std::string disagreement_markdown(const std::vector<CaseMetrics>& all) {
   std::string md =
       "\n#### The statics the default and chi2 disagree on\n\n"
@@ -246,8 +230,8 @@ std::string disagreement_markdown(const std::vector<CaseMetrics>& all) {
   for (const CaseMetrics& m : all) {
     md += disagreement_row(m.name, m.disagreement);
     if (m.static_sequence) continue;
-    if (m.rough_pose == "ransac") pool_into(ransac, m.disagreement);
-    if (m.rough_pose == "pgt") pool_into(pgt, m.disagreement);
+    if (m.rough_pose == "ransac") ransac += m.disagreement;
+    if (m.rough_pose == "pgt") pgt += m.disagreement;
   }
   if (ransac.statics > 0) md += disagreement_row("cases with a person, RANSAC", ransac);
   if (pgt.statics > 0) md += disagreement_row("cases with a person, perturbed GT", pgt);

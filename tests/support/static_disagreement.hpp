@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <limits>
+#include <utility>
 #include <vector>
 
 #include "screening_cases.hpp"
@@ -40,6 +41,23 @@ struct StaticDisagreement {
   /// reference residual [px/sigma] (how far it moves with the person): of the matches only the
   /// default's evidence rejects, and of every static match beside the person
   std::vector<double> evidence_along_person, beside_along_person;
+
+  /// Pools another case's counts and samples into this one.
+  StaticDisagreement& operator+=(const StaticDisagreement& o) {
+    statics += o.statics;
+    beside_person += o.beside_person;
+    only_default_by_gate += o.only_default_by_gate;
+    only_default_by_evidence += o.only_default_by_evidence;
+    only_default_by_evidence_beside += o.only_default_by_evidence_beside;
+    only_chi2 += o.only_chi2;
+    for (auto [to, from] : {std::pair{&all_reference, &o.all_reference},
+                            std::pair{&evidence_reference, &o.evidence_reference},
+                            std::pair{&chi2_reference, &o.chi2_reference},
+                            std::pair{&evidence_along_person, &o.evidence_along_person},
+                            std::pair{&beside_along_person, &o.beside_along_person}})
+      to->insert(to->end(), from->begin(), from->end());
+    return *this;
+  }
 };
 
 /// The median of `v` (NaN when empty); `v` is taken by value and reordered.
