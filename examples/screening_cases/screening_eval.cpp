@@ -15,6 +15,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <utility>
 
 namespace {
 
@@ -211,6 +212,18 @@ std::string disagreement_row(const std::string& name, const hbos_test::StaticDis
                      med(d.chi2_reference), med(d.all_reference), med(d.beside_along_person));
 }
 
+// The cases with a person pooled per rough pose: (RANSAC, perturbed GT).
+std::pair<hbos_test::StaticDisagreement, hbos_test::StaticDisagreement> pooled_disagreement(
+    const std::vector<CaseMetrics>& all) {
+  hbos_test::StaticDisagreement ransac, pgt;
+  for (const CaseMetrics& m : all) {
+    if (m.static_sequence) continue;
+    if (m.rough_pose == "ransac") ransac += m.disagreement;
+    if (m.rough_pose == "pgt") pgt += m.disagreement;
+  }
+  return {ransac, pgt};
+}
+
 std::string disagreement_markdown(const std::vector<CaseMetrics>& all) {
   std::string md =
       "\n#### The statics the default and chi2 disagree on\n\n"
@@ -226,13 +239,8 @@ std::string disagreement_markdown(const std::vector<CaseMetrics>& all) {
       "| case | statics | beside % | default only, gate | default only, evidence (beside %) | "
       "evidence: residual | evidence: along | chi2 only (residual) | all: residual | beside: "
       "along |\n|---|---|---|---|---|---|---|---|---|---|\n";
-  hbos_test::StaticDisagreement ransac, pgt;
-  for (const CaseMetrics& m : all) {
-    md += disagreement_row(m.name, m.disagreement);
-    if (m.static_sequence) continue;
-    if (m.rough_pose == "ransac") ransac += m.disagreement;
-    if (m.rough_pose == "pgt") pgt += m.disagreement;
-  }
+  for (const CaseMetrics& m : all) md += disagreement_row(m.name, m.disagreement);
+  const auto [ransac, pgt] = pooled_disagreement(all);
   if (ransac.statics > 0) md += disagreement_row("cases with a person, RANSAC", ransac);
   if (pgt.statics > 0) md += disagreement_row("cases with a person, perturbed GT", pgt);
   return md;
@@ -295,6 +303,34 @@ std::string markdown(const std::vector<CaseMetrics>& all, const nlohmann::ordere
   return md;
 }
 
+// The disagreement counts, and the reference residuals' deciles 1, 2.5 (quartile), 5, 7.5, 9 as
+// [q10, q25, q50, q75, q90] (a figure's boxes), with the medians named on their own.
+nlohmann::ordered_json disagreement_json(const hbos_test::StaticDisagreement& d) {
+  const auto quantiles = [](const std::vector<double>& v) {
+    nlohmann::ordered_json q = nlohmann::ordered_json::array();
+    for (const double p : {0.1, 0.25, 0.5, 0.75, 0.9})
+      q.push_back(number(hbos::cases::quantile_of(v, p)));  // NaN (null) when empty
+    return q;
+  };
+  return {{"statics", d.statics},
+          {"beside_person", d.beside_person},
+          {"only_default_by_gate", d.only_default_by_gate},
+          {"only_default_by_evidence", d.only_default_by_evidence},
+          {"only_default_by_evidence_beside_person", d.only_default_by_evidence_beside},
+          {"only_chi2", d.only_chi2},
+          {"median_reference_residual",
+           {{"all", number(hbos_test::median_of(d.all_reference))},
+            {"only_default_by_evidence", number(hbos_test::median_of(d.evidence_reference))},
+            {"only_chi2", number(hbos_test::median_of(d.chi2_reference))}}},
+          {"reference_residual_quantiles",
+           {{"all", quantiles(d.all_reference)},
+            {"only_default_by_evidence", quantiles(d.evidence_reference)},
+            {"only_chi2", quantiles(d.chi2_reference)}}},
+          {"median_along_person",
+           {{"only_default_by_evidence", number(hbos_test::median_of(d.evidence_along_person))},
+            {"beside_person", number(hbos_test::median_of(d.beside_along_person))}}}};
+}
+
 nlohmann::ordered_json to_json(const std::vector<CaseMetrics>& all,
                                const std::vector<NamedScreen>& strategies) {
   nlohmann::ordered_json out;
@@ -338,21 +374,7 @@ nlohmann::ordered_json to_json(const std::vector<CaseMetrics>& all,
         {"statics", h.statics},   {"static_dropped_pct", number(h.static_dropped_pct())},
         {"dynamics", h.dynamics}, {"dynamic_kept_pct", number(h.dynamic_kept_pct())},
         {"gross", h.gross},       {"gross_kept_pct", number(h.gross_kept_pct())}};
-    const auto& d = m.disagreement;
-    c["static_disagreement"] = {
-        {"statics", d.statics},
-        {"beside_person", d.beside_person},
-        {"only_default_by_gate", d.only_default_by_gate},
-        {"only_default_by_evidence", d.only_default_by_evidence},
-        {"only_default_by_evidence_beside_person", d.only_default_by_evidence_beside},
-        {"only_chi2", d.only_chi2},
-        {"median_reference_residual",
-         {{"all", number(hbos_test::median_of(d.all_reference))},
-          {"only_default_by_evidence", number(hbos_test::median_of(d.evidence_reference))},
-          {"only_chi2", number(hbos_test::median_of(d.chi2_reference))}}},
-        {"median_along_person",
-         {{"only_default_by_evidence", number(hbos_test::median_of(d.evidence_along_person))},
-          {"beside_person", number(hbos_test::median_of(d.beside_along_person))}}}};
+    c["static_disagreement"] = disagreement_json(m.disagreement);
     c["pairs_with_person"] = m.pairs_with_person;
     c["pairs_absorbed"] = m.pairs_absorbed;
     c["static_whitened_quantiles"] = {
@@ -362,6 +384,9 @@ nlohmann::ordered_json to_json(const std::vector<CaseMetrics>& all,
         {"q99", number(hbos::cases::quantile_of(m.static_whitened, 0.99))}};
     out["cases"].push_back(c);
   }
+  const auto [ransac, pgt] = pooled_disagreement(all);
+  out["static_disagreement_pooled"] = {{"ransac", disagreement_json(ransac)},
+                                       {"pgt", disagreement_json(pgt)}};
   return out;
 }
 
